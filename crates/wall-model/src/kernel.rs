@@ -1,0 +1,212 @@
+//! The batch kernel: one flat, branch-free loop per scene variant, chosen once per batch.
+//!
+//! A variant is the exponent pair (see [`crate::power::Exponents`]) and four switches fixed
+//! for the whole batch: spin tracked, friction (`mu > 0`), a normal per particle, tally
+//! wanted. Each combination is its own monomorphised loop, so a scene pays only for what it
+//! uses, and each loop is compiled for AVX-512, AVX2+FMA and baseline x86-64, picked at run
+//! time (`multiversion`). The loop body calls [`crate::impact::resolve`], the same function the
+//! scalar API uses, so batch and scalar results agree bit for bit. No FMA contraction or
+//! fast-math is enabled, so the three instruction sets give identical results too.
+//!
+//! Above [`PARALLEL_MIN`] particles the batch is halved recursively down to [`LEAF`]-sized
+//! pieces run by rayon on the current thread pool. The halving and the order in which tallies
+//! are added depend only on the batch length, so results, tallies included, are identical
+//! for any number of threads.
+
+use multiversion::multiversion;
+
+use crate::batch::{Impacts, Normals, Outcome, SpinArrays, Tally, UNIT_SQUARED_MAX, UNIT_SQUARED_MIN};
+use crate::energy::{energy_loss, EnergyLoss};
+use crate::impact::{resolve, CaptureMode};
+use crate::law::LawConstants;
+use crate::power::{with_powers, Exponents, Power, PowerMode};
+use crate::real::{select, Real};
+
+/// Batches shorter than this run on the calling thread in one piece (no thread overhead).
+pub const PARALLEL_MIN: usize = 1 << 16;
+/// The size of the pieces a large batch is cut into for the threads.
+pub const LEAF: usize = 1 << 14;
+/// Independent accumulators of the tally loop (keeps the energy sums vectorisable).
+const LANES: usize = 8;
+
+/// Everything about a law that the kernel needs, fixed for one batch.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Setup<T> {
+    pub(crate) constants: LawConstants<T>,
+    pub(crate) exponents: Exponents,
+    pub(crate) power: PowerMode,
+    pub(crate) capture: CaptureMode,
+}
+
+/// Applies the law to a whole batch, returning its tally (all zero unless `want_tally`).
+pub(crate) fn apply<T: Real>(setup: &Setup<T>, batch: Impacts<'_, T>, want_tally: bool) -> Tally {
+    if batch.len() < PARALLEL_MIN {
+        run_piece(setup, batch, want_tally)
+    } else {
+        split(setup, batch, want_tally)
+    }
+}
+
+fn split<T: Real>(setup: &Setup<T>, batch: Impacts<'_, T>, want_tally: bool) -> Tally {
+    if batch.len() <= LEAF {
+        return run_piece(setup, batch, want_tally);
+    }
+    // Cut on a 64-particle boundary so that pieces start on cache-line boundaries.
+    let mid = (batch.len() / 2).next_multiple_of(64);
+    let (first, second) = batch.split_at(mid);
+    let (mut tally, rest) = rayon::join(|| split(setup, first, want_tally), || split(setup, second, want_tally));
+    tally += rest;
+    tally
+}
+
+/// Expands `$body` once for each combination of the named booleans, each bound to a `const`.
+macro_rules! with_const_bools {
+    ($body:expr;) => { $body };
+    ($body:expr; $value:expr => $name:ident $(, $rest_value:expr => $rest_name:ident)*) => {
+        if $value {
+            const $name: bool = true;
+            with_const_bools!($body; $($rest_value => $rest_name),*)
+        } else {
+            const $name: bool = false;
+            with_const_bools!($body; $($rest_value => $rest_name),*)
+        }
+    };
+}
+
+/// Picks the variant for this piece and runs its loop.
+fn run_piece<T: Real>(setup: &Setup<T>, mut batch: Impacts<'_, T>, want_tally: bool) -> Tally {
+    let c = &setup.constants;
+    let spin = batch.spin.is_some();
+    let friction = c.mu > T::ZERO;
+    let per_particle_normal = matches!(batch.normals, Normals::PerParticle(_));
+    with_powers!(setup.exponents, setup.power, (c.p, c.q), |p, q| {
+        with_const_bools!(
+            sweep::<T, _, _, SPIN, FRICTION, PER_NORMAL, TALLY>(c, p, q, setup.capture, &mut batch);
+            spin => SPIN, friction => FRICTION, per_particle_normal => PER_NORMAL, want_tally => TALLY
+        )
+    })
+}
+
+#[inline(always)]
+fn all_finite<T: Real>(x: [T; 3]) -> bool {
+    x[0].is_finite() & x[1].is_finite() & x[2].is_finite()
+}
+
+/// The loop over one piece of a batch, for one variant.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx512dq+avx512bw", "x86_64+avx2+fma"))]
+fn sweep<
+    T: Real,
+    P: Power<T>,
+    Q: Power<T>,
+    const SPIN: bool,
+    const FRICTION: bool,
+    const PER_NORMAL: bool,
+    const TALLY: bool,
+>(
+    c: &LawConstants<T>,
+    p: P,
+    q: Q,
+    mode: CaptureMode,
+    batch: &mut Impacts<'_, T>,
+) -> Tally {
+    let len = batch.len();
+    let Impacts { velocity, spin, normals, outcome } = batch;
+    let [vx, vy, vz] = velocity;
+    // Re-slicing to `len` lets the compiler drop every bounds check in the loop.
+    let (vx, vy, vz) = (&mut vx[..len], &mut vy[..len], &mut vz[..len]);
+    let outcome: &mut [u8] = bytemuck::cast_slice_mut::<Outcome, u8>(&mut outcome[..len]);
+    let (wx, wy, wz, radius): (&mut [T], &mut [T], &mut [T], &[T]) = match spin {
+        Some(SpinArrays { w: [wx, wy, wz], radius }) if SPIN => {
+            (&mut wx[..len], &mut wy[..len], &mut wz[..len], &radius[..len])
+        }
+        _ => (&mut [], &mut [], &mut [], &[]),
+    };
+    let (uniform, nx, ny, nz): ([T; 3], &[T], &[T], &[T]) = match *normals {
+        Normals::Uniform(n) => (n, &[], &[], &[]),
+        Normals::PerParticle([nx, ny, nz]) => ([T::ZERO; 3], &nx[..len], &ny[..len], &nz[..len]),
+    };
+    let (unit_min, unit_max) = (T::from_f64(UNIT_SQUARED_MIN), T::from_f64(UNIT_SQUARED_MAX));
+
+    let mut particle = |i: usize| -> (u8, EnergyLoss<T>) {
+        let v = [vx[i], vy[i], vz[i]];
+        let n = if PER_NORMAL { [nx[i], ny[i], nz[i]] } else { uniform };
+        let (w, r) = if SPIN { ([wx[i], wy[i], wz[i]], radius[i]) } else { ([T::ZERO; 3], T::ONE) };
+        let res = resolve::<T, P, Q, SPIN, FRICTION>(c, p, q, mode, v, w, r, n);
+
+        let mut valid = all_finite(v);
+        if SPIN {
+            valid &= all_finite(w) & (r > T::ZERO) & r.is_finite();
+        }
+        if PER_NORMAL {
+            let nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+            valid &= (nn >= unit_min) & (nn <= unit_max);
+        }
+        let impact = res.normal_velocity < T::ZERO;
+        let update = valid & impact;
+        vx[i] = select(update, res.velocity[0], v[0]);
+        vy[i] = select(update, res.velocity[1], v[1]);
+        vz[i] = select(update, res.velocity[2], v[2]);
+        if SPIN {
+            wx[i] = select(update, res.spin[0], w[0]);
+            wy[i] = select(update, res.spin[1], w[1]);
+            wz[i] = select(update, res.spin[2], w[2]);
+        }
+        let code = select(
+            !valid,
+            Outcome::INVALID.0,
+            select(
+                !impact,
+                Outcome::SKIPPED.0,
+                select(res.coefficients.captured, Outcome::CAPTURED.0, Outcome::REBOUND.0),
+            ),
+        );
+        outcome[i] = code;
+        let loss = if TALLY {
+            let l = energy_loss(&res);
+            let keep = |x: T| select(update, x, T::ZERO);
+            EnergyLoss {
+                material: keep(l.material),
+                adhesion: keep(l.adhesion),
+                friction: keep(l.friction),
+                deposition: keep(l.deposition),
+            }
+        } else {
+            EnergyLoss::default()
+        };
+        (code, loss)
+    };
+
+    if !TALLY {
+        for i in 0..len {
+            particle(i);
+        }
+        return Tally::default();
+    }
+
+    let mut counts = [[0u64; 4]; LANES];
+    let mut energy = [EnergyLoss::<f64>::default(); LANES];
+    let mut count = |lane: usize, (code, loss): (u8, EnergyLoss<T>)| {
+        for (k, slot) in counts[lane].iter_mut().enumerate() {
+            *slot += u64::from(code == k as u8);
+        }
+        energy[lane] += loss.to_f64();
+    };
+    let blocks = len / LANES;
+    for block in 0..blocks {
+        for lane in 0..LANES {
+            count(lane, particle(block * LANES + lane));
+        }
+    }
+    for i in blocks * LANES..len {
+        count(i - blocks * LANES, particle(i));
+    }
+    let mut tally = Tally::default();
+    for lane in 0..LANES {
+        tally.rebound += counts[lane][0];
+        tally.captured += counts[lane][1];
+        tally.skipped += counts[lane][2];
+        tally.invalid += counts[lane][3];
+        tally.energy += energy[lane];
+    }
+    tally
+}

@@ -1,0 +1,325 @@
+//! The floating-point types the kernels run on: `f64` and `f32`.
+//!
+//! [`Real`] is the small set of operations the physics needs, so that every formula is
+//! written once and compiled for both precisions. It also carries the two halves of the
+//! vectorisable power function of [`crate::power`]: a base-2 logarithm and exponential
+//! built from bit manipulation and short polynomials, with no table look-ups and no
+//! branches, so that the compiler can vectorise loops that call them.
+
+use core::fmt::Debug;
+use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub};
+
+/// A floating-point type the wall law runs on (`f64` or `f32`).
+pub trait Real:
+    Copy
+    + Send
+    + Sync
+    + Debug
+    + Default
+    + PartialOrd
+    + Add<Output = Self>
+    + AddAssign
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + bytemuck::Pod
+    + 'static
+{
+    const ZERO: Self;
+    const ONE: Self;
+    const HALF: Self;
+    const INFINITY: Self;
+    /// A large value whose square is still finite: the law clamps its denominators here so
+    /// that no product of two of them overflows (1e150 for `f64`, 1e18 for `f32`).
+    const BIG: Self;
+    /// Machine epsilon.
+    const EPSILON: Self;
+
+    /// Rounds an `f64` to this type.
+    fn from_f64(x: f64) -> Self;
+    /// Widens this value to `f64` (exact).
+    fn to_f64(self) -> f64;
+    #[must_use]
+    fn abs(self) -> Self;
+    #[must_use]
+    fn sqrt(self) -> Self;
+    /// The smaller of two values; a NaN argument yields the other one.
+    #[must_use]
+    fn min(self, other: Self) -> Self;
+    /// The larger of two values; a NaN argument yields the other one.
+    #[must_use]
+    fn max(self, other: Self) -> Self;
+    /// `self^y` from the platform's libm (correctly rounded or nearly so; not vectorisable).
+    #[must_use]
+    fn powf(self, y: Self) -> Self;
+    /// True for every value but NaN and the infinities.
+    fn is_finite(self) -> bool;
+    /// `log2(x)` for finite `x > 0` (subnormals included), relative error below
+    /// [`Real::POW_TOLERANCE`] / 4 away from `x = 1` and absolute error below that near it.
+    /// Values outside that domain give unspecified (but not trapping) results.
+    #[must_use]
+    fn fast_log2(self) -> Self;
+    /// `2^t`, relative error below [`Real::POW_TOLERANCE`] / 4; results that would be
+    /// subnormal flush to zero, and results above `2^(MAX_EXP - 1/2)` (about 1.3e308 for
+    /// `f64`, 2.4e38 for `f32`) become infinity.
+    #[must_use]
+    fn fast_exp2(self) -> Self;
+    /// The stated bound on the relative error of [`crate::power::fast_pow`] for
+    /// `|y log2(x)| <= 64` (checked by the tests): 1e-12 for `f64`, 4e-6 for `f32`.
+    const POW_TOLERANCE: f64;
+}
+
+/// Branch-free choice between two values; the kernels use it so that loops vectorise.
+#[inline(always)]
+#[must_use]
+pub fn select<T: Copy>(condition: bool, if_true: T, if_false: T) -> T {
+    if condition {
+        if_true
+    } else {
+        if_false
+    }
+}
+
+/// Horner evaluation of `c[0] + c[1] x + c[2] x^2 + ...`.
+#[inline(always)]
+fn horner<T: Real>(x: T, coefficients: &[f64]) -> T {
+    let mut acc = T::ZERO;
+    for &c in coefficients.iter().rev() {
+        acc = acc * x + T::from_f64(c);
+    }
+    acc
+}
+
+/// Coefficients of `ln(m) / (2 z) = 1 + z^2/3 + z^4/5 + ...` in powers of `z^2`, where
+/// `z = (m - 1)/(m + 1)` and `m` is in `[sqrt(1/2), sqrt(2))`, so `|z| < 0.1716`.
+const ATANH_SERIES: [f64; 9] =
+    [1.0, 1.0 / 3.0, 1.0 / 5.0, 1.0 / 7.0, 1.0 / 9.0, 1.0 / 11.0, 1.0 / 13.0, 1.0 / 15.0, 1.0 / 17.0];
+/// Taylor coefficients of `e^g` for `|g| <= ln(2)/2`.
+const EXP_SERIES: [f64; 13] = [
+    1.0,
+    1.0,
+    1.0 / 2.0,
+    1.0 / 6.0,
+    1.0 / 24.0,
+    1.0 / 120.0,
+    1.0 / 720.0,
+    1.0 / 5040.0,
+    1.0 / 40320.0,
+    1.0 / 362880.0,
+    1.0 / 3628800.0,
+    1.0 / 39916800.0,
+    1.0 / 479001600.0,
+];
+
+/// `log2(x) = e + ln(m)/ln(2)` with `x = m 2^e`, shared by both precisions.
+#[inline(always)]
+fn log2_from_parts<T: Real>(exponent: T, mantissa: T, terms: usize) -> T {
+    let z = (mantissa - T::ONE) / (mantissa + T::ONE);
+    let series = horner(z * z, &ATANH_SERIES[..terms]);
+    exponent + T::from_f64(2.0 * core::f64::consts::LOG2_E) * z * series
+}
+
+impl Real for f64 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    const HALF: Self = 0.5;
+    const INFINITY: Self = f64::INFINITY;
+    const BIG: Self = 1e150;
+    const EPSILON: Self = f64::EPSILON;
+    const POW_TOLERANCE: f64 = 1e-12;
+
+    #[inline(always)]
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f64::abs(self)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        f64::min(self, other)
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        f64::max(self, other)
+    }
+    #[inline(always)]
+    fn powf(self, y: Self) -> Self {
+        f64::powf(self, y)
+    }
+    #[inline(always)]
+    fn is_finite(self) -> bool {
+        f64::is_finite(self)
+    }
+
+    #[inline(always)]
+    fn fast_log2(self) -> Self {
+        // Subnormals are scaled into the normal range first.
+        let subnormal = self < f64::MIN_POSITIVE;
+        let x = select(subnormal, self * f64::from_bits(0x4350_0000_0000_0000), self); // 2^54
+        let bits = x.to_bits();
+        let mut mantissa = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+        let above = mantissa > core::f64::consts::SQRT_2;
+        mantissa = select(above, mantissa * 0.5, mantissa);
+        let biased = (bits >> 52) + above as u64;
+        // Integer to float without a (non-vectorisable) 64-bit conversion: 2^52 + k - 2^52.
+        let exponent = f64::from_bits(biased | 0x4330_0000_0000_0000)
+            - (4_503_599_627_370_496.0 + 1023.0)
+            - select(subnormal, 54.0, 0.0);
+        log2_from_parts(exponent, mantissa, 9)
+    }
+
+    #[inline(always)]
+    fn fast_exp2(self) -> Self {
+        let t = self.clamp(-1023.0, 1024.0);
+        let n = (t + 0.5).floor(); // in [-1023, 1024]
+        let g = (t - n) * core::f64::consts::LN_2; // |g| <= ln(2)/2
+        let poly = horner(g, &EXP_SERIES);
+        // 2^n built in the exponent field: (n + 1023) read off the mantissa of 2^52 + n + 1023.
+        let biased = (n + (4_503_599_627_370_496.0 + 1023.0)).to_bits() & 0x7ff;
+        let scale = f64::from_bits(biased << 52);
+        select(self < -1022.0, 0.0, poly * scale)
+    }
+}
+
+impl Real for f32 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    const HALF: Self = 0.5;
+    const INFINITY: Self = f32::INFINITY;
+    const BIG: Self = 1e18;
+    const EPSILON: Self = f32::EPSILON;
+    const POW_TOLERANCE: f64 = 4e-6;
+
+    #[inline(always)]
+    fn from_f64(x: f64) -> Self {
+        x as f32
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f32::abs(self)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f32::sqrt(self)
+    }
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        f32::min(self, other)
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        f32::max(self, other)
+    }
+    #[inline(always)]
+    fn powf(self, y: Self) -> Self {
+        f32::powf(self, y)
+    }
+    #[inline(always)]
+    fn is_finite(self) -> bool {
+        f32::is_finite(self)
+    }
+
+    #[inline(always)]
+    fn fast_log2(self) -> Self {
+        let subnormal = self < f32::MIN_POSITIVE;
+        let x = select(subnormal, self * f32::from_bits(0x4b80_0000), self); // 2^24
+        let bits = x.to_bits();
+        let mut mantissa = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000);
+        let above = mantissa > core::f32::consts::SQRT_2;
+        mantissa = select(above, mantissa * 0.5, mantissa);
+        let biased = (bits >> 23) + above as u32;
+        let exponent = f32::from_bits(biased | 0x4b00_0000) - (8_388_608.0 + 127.0) - select(subnormal, 24.0, 0.0);
+        log2_from_parts(exponent, mantissa, 5)
+    }
+
+    #[inline(always)]
+    fn fast_exp2(self) -> Self {
+        let t = self.clamp(-127.0, 128.0);
+        let n = (t + 0.5).floor();
+        let g = (t - n) * core::f32::consts::LN_2;
+        let poly = horner(g, &EXP_SERIES[..8]);
+        let biased = (n + (8_388_608.0 + 127.0)).to_bits() & 0xff;
+        let scale = f32::from_bits(biased << 23);
+        select(self < -126.0, 0.0, poly * scale)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rel(a: f64, b: f64) -> f64 {
+        if a == b {
+            0.0
+        } else {
+            ((a - b) / b).abs()
+        }
+    }
+
+    #[test]
+    fn log2_matches_libm_over_the_normal_and_subnormal_range() {
+        let mut worst = 0.0f64;
+        for k in -1070..1023 {
+            for frac in [1.0, 1.1, 1.25, 1.4142, 1.5, 1.9999] {
+                let x = frac * 2f64.powi(k);
+                let err = (x.fast_log2() - x.log2()).abs() / x.log2().abs().max(1.0);
+                worst = worst.max(err);
+            }
+        }
+        assert!(worst < 1e-15, "worst log2 error {worst:e}");
+    }
+
+    #[test]
+    fn exp2_matches_libm_and_flushes_at_the_ends() {
+        let mut worst = 0.0f64;
+        let mut t = -1022.0;
+        while t < 1023.4 {
+            worst = worst.max(rel(t.fast_exp2(), t.exp2()));
+            t += 0.137;
+        }
+        assert!(worst < 2.5e-16 * 8.0, "worst exp2 error {worst:e}");
+        assert_eq!((-1100.0f64).fast_exp2(), 0.0);
+        assert_eq!(2000.0f64.fast_exp2(), f64::INFINITY);
+        assert_eq!(1023.6f64.fast_exp2(), f64::INFINITY); // the documented edge
+        assert_eq!((-200.0f32).fast_exp2(), 0.0);
+        assert_eq!(200.0f32.fast_exp2(), f32::INFINITY);
+    }
+
+    #[test]
+    fn f32_log2_and_exp2_are_accurate_to_a_few_ulp() {
+        let mut worst_log = 0.0f64;
+        let mut worst_exp = 0.0f64;
+        for k in -140..127 {
+            for frac in [1.0f32, 1.2, 1.41, 1.5, 1.99] {
+                let x = frac * 2f32.powi(k);
+                if x == 0.0 {
+                    continue;
+                }
+                let exact = (x as f64).log2();
+                worst_log = worst_log.max((x.fast_log2() as f64 - exact).abs() / exact.abs().max(1.0));
+            }
+        }
+        let mut t = -126.0f32;
+        while t < 127.4 {
+            worst_exp = worst_exp.max(rel(t.fast_exp2() as f64, (t as f64).exp2()));
+            t += 0.0917;
+        }
+        assert!(worst_log < 4e-7, "worst f32 log2 error {worst_log:e}");
+        assert!(worst_exp < 4e-7, "worst f32 exp2 error {worst_exp:e}");
+    }
+}

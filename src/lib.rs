@@ -1,0 +1,7 @@
+//! # depo
+//!
+//! A particle-deposition engine for CFD: the Brach & Dunn (1998) rebound/capture law applied
+//! to Lagrangian particles at walls. This crate is the facade over the workspace:
+//!
+//! - [`wall_model`]: the law, 3-D impacts and structure-of-arrays batches.
+pub use depo_wall_model as wall_model;
