@@ -4,4 +4,7 @@
 //! to Lagrangian particles at walls. This crate is the facade over the workspace:
 //!
 //! - [`wall_model`]: the law, 3-D impacts and structure-of-arrays batches.
+//! - [`bench`]: kernel throughput as a fraction of a copy kernel moving the same bytes.
 pub use depo_wall_model as wall_model;
+
+pub mod bench;

@@ -87,9 +87,12 @@ fn run_piece<T: Real>(setup: &Setup<T>, mut batch: Impacts<'_, T>, want_tally: b
     })
 }
 
+/// True when all three are finite: `x - x` is 0 for finite `x` and NaN otherwise, and the
+/// sum of three such terms is 0 only when all are (adds run on other pipes than compares).
 #[inline(always)]
+#[allow(clippy::eq_op)] // `x - x` is the point: NaN exactly when `x` is not finite.
 fn all_finite<T: Real>(x: [T; 3]) -> bool {
-    x[0].is_finite() & x[1].is_finite() & x[2].is_finite()
+    (x[0] - x[0]) + (x[1] - x[1]) + (x[2] - x[2]) == T::ZERO
 }
 
 /// The loop over one piece of a batch, for one variant.
@@ -135,7 +138,7 @@ fn sweep<
 
         let mut valid = all_finite(v);
         if SPIN {
-            valid &= all_finite(w) & (r > T::ZERO) & r.is_finite();
+            valid &= all_finite(w) & (r > T::ZERO) & (r < T::INFINITY);
         }
         if PER_NORMAL {
             let nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];

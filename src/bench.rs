@@ -1,0 +1,264 @@
+//! Throughput of the wall-law kernel against this machine's memory ceiling.
+//!
+//! Memory bandwidth on shared machines swings by up to 2x between runs, so an absolute rate
+//! says little. Each measurement here therefore times, interleaved in the same run, the law
+//! kernel and a *copy kernel* that reads and writes exactly the same arrays (velocity, spin
+//! and radius when tracked, the outcome bytes) with trivial arithmetic, split across the same
+//! threads in the same pieces. The figure that holds from run to run is the ratio of the two.
+//!
+//! Before every timed call the pool's threads are woken with a broadcast, so a timing never
+//! includes thread wake-up.
+
+use std::time::{Duration, Instant};
+
+use depo_wall_model::{Impacts, LawParams, Normals, Outcome, PowerMode, Real, WallLaw};
+use rand::rngs::StdRng;
+use rand::{RngExt, SeedableRng};
+use rayon::prelude::*;
+use rayon::ThreadPool;
+
+use crate::wall_model::kernel::LEAF;
+
+/// Working precision of a benchmark.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Precision {
+    F64,
+    F32,
+}
+
+/// One kernel configuration to time.
+#[derive(Clone, Copy, Debug)]
+pub struct Scenario {
+    pub precision: Precision,
+    /// Exponents `(p, q)`.
+    pub exponents: (f64, f64),
+    pub power: PowerMode,
+    pub spin: bool,
+    /// Number of impacts per call.
+    pub n: usize,
+}
+
+impl Scenario {
+    /// A short label such as `f64 p=1 q=1/2 spin`.
+    #[must_use]
+    pub fn label(&self) -> String {
+        let exp = |x: f64| if x == 0.5 { "1/2".to_string() } else { format!("{x}") };
+        let power = match (self.exponents, self.power) {
+            ((1.0 | 0.5, 1.0 | 0.5), _) => "",
+            (_, PowerMode::Fast) => " fast-pow",
+            (_, PowerMode::Exact) => " libm-pow",
+        };
+        format!(
+            "{} p={} q={}{}{}",
+            match self.precision {
+                Precision::F64 => "f64",
+                Precision::F32 => "f32",
+            },
+            exp(self.exponents.0),
+            exp(self.exponents.1),
+            power,
+            if self.spin { " spin" } else { "" }
+        )
+    }
+
+    /// The law used: the li1997-sio2 constants with friction 0.3 and the scenario's exponents.
+    #[must_use]
+    pub fn law(&self) -> WallLaw {
+        let (p, q) = self.exponents;
+        WallLaw::new(LawParams { p, q, ..LawParams::symmetric(12.5, 0.065, 0.074, 1.0, 0.5).with_friction(0.3) })
+            .expect("valid benchmark law")
+            .with_power_mode(self.power)
+    }
+}
+
+/// The timing of one scenario.
+#[derive(Clone, Debug)]
+pub struct Measurement {
+    pub scenario: Scenario,
+    /// Median time of one law-kernel call.
+    pub kernel: Duration,
+    /// Median time of one copy-kernel call on the same arrays.
+    pub ceiling: Duration,
+}
+
+impl Measurement {
+    /// Impacts per second of the law kernel.
+    #[must_use]
+    pub fn rate(&self) -> f64 {
+        self.scenario.n as f64 / self.kernel.as_secs_f64()
+    }
+    /// Impacts per second of the copy kernel.
+    #[must_use]
+    pub fn ceiling_rate(&self) -> f64 {
+        self.scenario.n as f64 / self.ceiling.as_secs_f64()
+    }
+    /// The kernel's rate as a fraction of the copy kernel's.
+    #[must_use]
+    pub fn fraction(&self) -> f64 {
+        self.ceiling.as_secs_f64() / self.kernel.as_secs_f64()
+    }
+    /// Bytes the kernel moves per impact (read plus written).
+    #[must_use]
+    pub fn bytes_per_impact(&self) -> usize {
+        let size = match self.scenario.precision {
+            Precision::F64 => 8,
+            Precision::F32 => 4,
+        };
+        let arrays = if self.scenario.spin { 6 * 2 + 1 } else { 3 * 2 };
+        arrays * size + 1
+    }
+}
+
+/// Structure-of-arrays particle state owned by the benchmark.
+struct State<T> {
+    v: [Vec<T>; 3],
+    w: [Vec<T>; 3],
+    radius: Vec<T>,
+    outcome: Vec<Outcome>,
+}
+
+impl<T: Real> State<T> {
+    fn random(n: usize, spin: bool, seed: u64) -> Self {
+        let mut rng = StdRng::seed_from_u64(seed);
+        let mut column =
+            |f: &mut dyn FnMut(&mut StdRng) -> f64| (0..n).map(|_| T::from_f64(f(&mut rng))).collect::<Vec<T>>();
+        let vx = column(&mut |r| r.random_range(-1.0..1.0));
+        let vy = column(&mut |r| r.random_range(-1.0..1.0));
+        // Normal speeds log-uniform over 0.01..10 m/s: both sides of vc = 0.074.
+        let vz = column(&mut |r| -(10f64).powf(r.random_range(-2.0..1.0)));
+        let m = if spin { n } else { 0 };
+        let mut spin_column =
+            |f: &mut dyn FnMut(&mut StdRng) -> f64| (0..m).map(|_| T::from_f64(f(&mut rng))).collect::<Vec<T>>();
+        let w = [
+            spin_column(&mut |r| r.random_range(-1e4..1e4)),
+            spin_column(&mut |r| r.random_range(-1e4..1e4)),
+            spin_column(&mut |r| r.random_range(-1e4..1e4)),
+        ];
+        let radius = spin_column(&mut |r| r.random_range(1e-5..1e-4));
+        Self { v: [vx, vy, vz], w, radius, outcome: vec![Outcome::default(); n] }
+    }
+
+    fn restore(&mut self, pristine: &Self) {
+        for k in 0..3 {
+            self.v[k].copy_from_slice(&pristine.v[k]);
+            self.w[k].copy_from_slice(&pristine.w[k]);
+        }
+    }
+
+    fn law_kernel(&mut self, law: &WallLaw) {
+        let [vx, vy, vz] = &mut self.v;
+        let batch = Impacts::new([vx, vy, vz], Normals::Uniform([T::ZERO, T::ZERO, T::ONE]), &mut self.outcome)
+            .expect("consistent arrays");
+        let batch = if self.radius.is_empty() {
+            batch
+        } else {
+            let [wx, wy, wz] = &mut self.w;
+            batch.with_spin([wx, wy, wz], &self.radius).expect("consistent arrays")
+        };
+        law.apply(batch, None);
+    }
+
+    /// Reads and writes the same arrays as the law kernel, in the same pieces.
+    fn copy_kernel(&mut self) {
+        let [vx, vy, vz] = &mut self.v;
+        let flip = |x: &mut T| *x = -*x;
+        let spin = !self.radius.is_empty();
+        let [wx, wy, wz] = &mut self.w;
+        let outcome: &mut [u8] = bytemuck::cast_slice_mut(&mut self.outcome);
+        if spin {
+            let radius = &self.radius;
+            vx.par_chunks_mut(LEAF)
+                .zip(vy.par_chunks_mut(LEAF))
+                .zip(vz.par_chunks_mut(LEAF))
+                .zip(wx.par_chunks_mut(LEAF).zip(wy.par_chunks_mut(LEAF)).zip(wz.par_chunks_mut(LEAF)))
+                .zip(radius.par_chunks(LEAF).zip(outcome.par_chunks_mut(LEAF)))
+                .for_each(|((((a, b), c), ((d, e), f)), (r, o))| {
+                    for i in 0..a.len() {
+                        flip(&mut a[i]);
+                        flip(&mut b[i]);
+                        flip(&mut c[i]);
+                        d[i] = d[i] * r[i];
+                        flip(&mut e[i]);
+                        flip(&mut f[i]);
+                        o[i] = 1;
+                    }
+                });
+        } else {
+            vx.par_chunks_mut(LEAF)
+                .zip(vy.par_chunks_mut(LEAF))
+                .zip(vz.par_chunks_mut(LEAF))
+                .zip(outcome.par_chunks_mut(LEAF))
+                .for_each(|(((a, b), c), o)| {
+                    for i in 0..a.len() {
+                        flip(&mut a[i]);
+                        flip(&mut b[i]);
+                        flip(&mut c[i]);
+                        o[i] = 1;
+                    }
+                });
+        }
+    }
+}
+
+fn median(mut xs: Vec<Duration>) -> Duration {
+    xs.sort();
+    xs[xs.len() / 2]
+}
+
+/// Times a closure after waking every thread of the pool.
+fn timed(pool: &ThreadPool, f: impl FnOnce() + Send) -> Duration {
+    pool.broadcast(|_| ());
+    pool.install(|| {
+        let start = Instant::now();
+        f();
+        start.elapsed()
+    })
+}
+
+fn measure_typed<T: Real>(scenario: Scenario, pool: &ThreadPool, reps: usize) -> Measurement {
+    let law = scenario.law();
+    let pristine = State::<T>::random(scenario.n, scenario.spin, 42);
+    let mut state = State::<T>::random(scenario.n, scenario.spin, 42);
+    let (mut kernel, mut ceiling) = (Vec::new(), Vec::new());
+    for rep in 0..reps + 1 {
+        state.restore(&pristine);
+        let c = timed(pool, || state.copy_kernel());
+        state.restore(&pristine);
+        let k = timed(pool, || state.law_kernel(&law));
+        if rep > 0 {
+            // The first round warms caches and page tables.
+            kernel.push(k);
+            ceiling.push(c);
+        }
+    }
+    Measurement { scenario, kernel: median(kernel), ceiling: median(ceiling) }
+}
+
+/// Times `scenario` on `pool`: `reps` interleaved rounds of copy kernel then law kernel,
+/// medians of each.
+#[must_use]
+pub fn measure(scenario: Scenario, pool: &ThreadPool, reps: usize) -> Measurement {
+    match scenario.precision {
+        Precision::F64 => measure_typed::<f64>(scenario, pool, reps),
+        Precision::F32 => measure_typed::<f32>(scenario, pool, reps),
+    }
+}
+
+/// The scenarios of the README's table at `n` impacts.
+#[must_use]
+pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
+    let mut out = Vec::new();
+    for precision in [Precision::F64, Precision::F32] {
+        for spin in [false, true] {
+            for (exponents, power) in [
+                ((1.0, 1.0), PowerMode::Fast),
+                ((1.0, 0.5), PowerMode::Fast),
+                ((1.3, 0.7), PowerMode::Fast),
+                ((1.3, 0.7), PowerMode::Exact),
+            ] {
+                out.push(Scenario { precision, exponents, power, spin, n });
+            }
+        }
+    }
+    out
+}
