@@ -1,0 +1,205 @@
+//! Invariants of the law over random inputs: `0 <= e <= 1`, kinetic energy never grows, rolling
+//! leaves no slip, the energy budget closes, f32 follows f64, batch equals scalar, and thread
+//! count does not change results.
+
+use depo_wall_model::impact::kinetic_energy;
+use depo_wall_model::{CaptureMode, ImpactResult, Impacts, LawParams, Normals, Outcome, PowerMode, Tally, WallLaw};
+use glam::DVec3;
+use proptest::prelude::*;
+
+/// Laws with `k1 <= k2`, any `kappa`s, exponents in [0.25, 4] (1 and 1/2 included), any `vc`.
+fn law_strategy() -> impl Strategy<Value = WallLaw> {
+    let exponent = prop_oneof![Just(1.0), Just(0.5), 0.25f64..4.0];
+    (
+        (0.0f64..4.0, 0.0f64..1.0),
+        (-2.0f64..1.0, -2.0f64..1.0),
+        exponent.clone(),
+        exponent,
+        -0.5f64..2.0,
+        0.0f64..1.0,
+        prop_oneof![Just(CaptureMode::Deposit), Just(CaptureMode::KeepOnWall)],
+        prop_oneof![Just(PowerMode::Fast), Just(PowerMode::Exact)],
+    )
+        .prop_map(|((lk2, shrink), (lka1, lka2), p, q, vc, mu, capture, power)| {
+            let k2 = 10f64.powf(lk2);
+            let params = LawParams {
+                k1: k2 * (1.0 - 0.9 * shrink),
+                k2,
+                kappa1: 10f64.powf(lka1),
+                kappa2: 10f64.powf(lka2),
+                p,
+                q,
+                vc,
+                mu,
+            };
+            WallLaw::new(params).unwrap().with_capture_mode(capture).with_power_mode(power)
+        })
+}
+
+fn unit(theta: f64, phi: f64) -> DVec3 {
+    DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
+}
+
+/// An impact: velocity with `vn < 0` against a random unit normal, spin and radius.
+fn contact_strategy() -> impl Strategy<Value = (DVec3, DVec3, f64, DVec3)> {
+    (
+        0.0f64..core::f64::consts::PI,
+        0.0f64..core::f64::consts::TAU,
+        -3.0f64..1.5,
+        -2.0f64..2.0,
+        -2.0f64..2.0,
+        prop::array::uniform3(-1.0f64..1.0),
+        -6.0f64..-3.0,
+    )
+        .prop_map(|(theta, phi, log_speed, t1, t2, w, log_r)| {
+            let n = unit(theta, phi);
+            let a = n.any_orthonormal_vector();
+            let b = n.cross(a);
+            let speed = 10f64.powf(log_speed);
+            let r = 10f64.powf(log_r);
+            let v = -speed * n + speed * (t1 * a + t2 * b);
+            // Spins up to a few times |v|/r, so that slip can change sign.
+            let w = DVec3::from_array(w) * (3.0 * speed / r);
+            (v, w, r, n)
+        })
+}
+
+fn ke(v: DVec3, w: DVec3, r: f64) -> f64 {
+    kinetic_energy(v.to_array(), w.to_array(), r)
+}
+
+fn slip_after(res: &ImpactResult<f64>, r: f64, n: DVec3) -> DVec3 {
+    let v = DVec3::from_array(res.velocity);
+    let w = DVec3::from_array(res.spin);
+    let v_t = v - v.dot(n) * n;
+    v_t - r * w.cross(n)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn restitution_stays_in_zero_one(law in law_strategy(), log_speed in -6.0f64..4.0) {
+        let co = law.coefficients(10f64.powf(log_speed));
+        prop_assert!((0.0..=1.0).contains(&co.overall), "e = {}", co.overall);
+        prop_assert!(co.restitution > 0.0 && co.restitution <= 1.0);
+        prop_assert!(co.adhesion > 0.0 && co.adhesion <= 1.0);
+        prop_assert!((co.overall - co.restitution * (1.0 - co.adhesion)).abs() <= 1e-12);
+        prop_assert_eq!(co.captured, co.overall == 0.0);
+    }
+
+    #[test]
+    fn kinetic_energy_never_grows_and_the_budget_closes(law in law_strategy(), (v, w, r, n) in contact_strategy()) {
+        let res = law.impact(v, Some((w, r)), n);
+        let before = ke(v, w, r);
+        let after = ke(DVec3::from_array(res.velocity), DVec3::from_array(res.spin), r);
+        prop_assert!(after <= before * (1.0 + 1e-12), "{after} > {before}");
+        let loss = depo_wall_model::energy::energy_loss(&res);
+        prop_assert!(loss.material >= 0.0 && loss.adhesion >= 0.0 && loss.friction >= -1e-15 * before && loss.deposition >= 0.0);
+        prop_assert!((loss.total() - (before - after)).abs() <= 1e-12 * before, "budget {} vs {}", loss.total(), before - after);
+    }
+
+    #[test]
+    fn rolling_leaves_no_slip(law in law_strategy(), (v, w, r, n) in contact_strategy()) {
+        let law = law.with_capture_mode(CaptureMode::KeepOnWall);
+        let res = law.impact(v, Some((w, r)), n);
+        if res.rolling {
+            let scale = v.length() + r * w.length();
+            prop_assert!(slip_after(&res, r, n).length() <= 1e-12 * scale, "slip {}", slip_after(&res, r, n).length());
+        } else if law.params().mu > 0.0 && res.slip > 0.0 {
+            // Sliding: slip keeps its direction and shrinks.
+            let after = slip_after(&res, r, n);
+            prop_assert!(after.length() < res.slip * (1.0 + 1e-12));
+        }
+    }
+
+    #[test]
+    fn batch_equals_scalar_bit_for_bit(law in law_strategy(), contacts in prop::collection::vec(contact_strategy(), 1..40)) {
+        let n = contacts.len();
+        let mut cols: [Vec<f64>; 6] = Default::default();
+        let mut normals: [Vec<f64>; 3] = Default::default();
+        let mut radius = Vec::new();
+        for (v, w, r, nrm) in &contacts {
+            for k in 0..3 {
+                cols[k].push(v[k]);
+                cols[3 + k].push(w[k]);
+                normals[k].push(nrm[k]);
+            }
+            radius.push(*r);
+        }
+        let mut outcome = vec![Outcome::default(); n];
+        let [vx, vy, vz, wx, wy, wz] = &mut cols;
+        let batch = Impacts::new([vx, vy, vz], Normals::PerParticle([&normals[0], &normals[1], &normals[2]]), &mut outcome)
+            .unwrap()
+            .with_spin([wx, wy, wz], &radius)
+            .unwrap();
+        law.apply(batch, None);
+        for (i, (v, w, r, nrm)) in contacts.iter().enumerate() {
+            let res = law.impact(*v, Some((*w, *r)), *nrm);
+            let expected = if res.coefficients.captured { Outcome::CAPTURED } else { Outcome::REBOUND };
+            prop_assert_eq!(outcome[i], expected);
+            for k in 0..3 {
+                prop_assert_eq!(cols[k][i].to_bits(), res.velocity[k].to_bits());
+                prop_assert_eq!(cols[3 + k][i].to_bits(), res.spin[k].to_bits());
+            }
+        }
+    }
+
+    /// f32 follows f64 to 1e-4 of the incoming state away from the capture and rolling
+    /// thresholds (where a last-bit difference flips the branch).
+    #[test]
+    fn f32_follows_f64(law in law_strategy(), (v, w, r, n) in contact_strategy()) {
+        let res64 = law.impact(v, Some((w, r)), n);
+        let speed = -v.dot(n);
+        let vc = law.params().vc;
+        let limit = law.params().mu * (1.0 + res64.coefficients.overall) * speed;
+        let near_capture = (speed - vc).abs() < 1e-2 * speed.max(vc.abs()) || res64.coefficients.overall < 1e-3;
+        let near_rolling = (2.0 / 7.0 * res64.slip - limit).abs() < 1e-2 * limit.max(1e-300);
+        prop_assume!(!near_capture && !near_rolling);
+        let f = |x: DVec3| x.to_array().map(|c| c as f32);
+        let (mut vx, mut vy, mut vz) = ([f(v)[0]], [f(v)[1]], [f(v)[2]]);
+        let (mut wx, mut wy, mut wz) = ([f(w)[0]], [f(w)[1]], [f(w)[2]]);
+        let radius = [r as f32];
+        let nn = f(n);
+        let (nx, ny, nz) = ([nn[0]], [nn[1]], [nn[2]]);
+        let mut outcome = [Outcome::default()];
+        let batch = Impacts::new([&mut vx, &mut vy, &mut vz], Normals::PerParticle([&nx, &ny, &nz]), &mut outcome)
+            .unwrap()
+            .with_spin([&mut wx, &mut wy, &mut wz], &radius)
+            .unwrap();
+        law.apply(batch, None);
+        let v32 = DVec3::new(vx[0] as f64, vy[0] as f64, vz[0] as f64);
+        let w32 = DVec3::new(wx[0] as f64, wy[0] as f64, wz[0] as f64);
+        let v_scale = v.length() + r * w.length();
+        prop_assert!((v32 - DVec3::from_array(res64.velocity)).length() <= 1e-4 * v_scale, "{v32} vs {:?}", res64.velocity);
+        prop_assert!((w32 - DVec3::from_array(res64.spin)).length() <= 1e-4 * v_scale / r);
+    }
+}
+
+#[test]
+fn results_are_identical_for_one_and_two_threads() {
+    let law = WallLaw::new(LawParams::symmetric(12.5, 0.065, 0.074, 1.3, 0.7).with_friction(0.3)).unwrap();
+    let n = 300_000; // above the parallel threshold: cut into many pieces
+    let run = |threads: usize| {
+        let mut vx: Vec<f64> = (0..n).map(|i| ((i * 7919) % 1013) as f64 / 1013.0 - 0.5).collect();
+        let mut vy: Vec<f64> = (0..n).map(|i| ((i * 104_729) % 997) as f64 / 997.0 - 0.5).collect();
+        let mut vz: Vec<f64> = (0..n).map(|i| -0.01 - ((i * 31) % 1009) as f64 / 200.0).collect();
+        let mut outcome = vec![Outcome::default(); n];
+        let mut tally = Tally::default();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let batch =
+                Impacts::new([&mut vx, &mut vy, &mut vz], Normals::Uniform([0.0, 0.0, 1.0]), &mut outcome).unwrap();
+            law.apply(batch, Some(&mut tally));
+        });
+        (vx, vy, vz, outcome, tally)
+    };
+    let one = run(1);
+    let two = run(2);
+    assert!(one.0.iter().zip(&two.0).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(one.2.iter().zip(&two.2).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_eq!(one.3, two.3);
+    assert_eq!(one.4, two.4, "tallies, energies included, must match bit for bit");
+    assert_eq!(one.4.particles(), n as u64);
+    assert!(one.4.rebound > 0 && one.4.captured > 0);
+}
