@@ -39,10 +39,10 @@ pub struct Scenario {
 }
 
 impl Scenario {
-    /// A short label such as `f64 p=1 q=1/2 spin`.
+    /// A short label such as `f64 p=1 q=0.5 spin`.
     #[must_use]
     pub fn label(&self) -> String {
-        let exp = |x: f64| if x == 0.5 { "1/2".to_string() } else { format!("{x}") };
+        let exp = |x: f64| format!("{x}");
         let power = match (self.exponents, self.power) {
             ((1.0 | 0.5, 1.0 | 0.5), _) => "",
             (_, PowerMode::Fast) => " fast-pow",
@@ -109,16 +109,20 @@ impl Measurement {
     }
 }
 
-/// Structure-of-arrays particle state owned by the benchmark.
-struct State<T> {
+/// Structure-of-arrays particle state owned by a benchmark: random impacts on a floor
+/// (normal +z), normal speeds log-uniform over 0.01..10 m/s (both sides of the law's `vc`),
+/// tangential speeds up to 1 m/s, spins up to 1e4 rad/s, radii 10..100 um.
+pub struct Workload<T> {
     v: [Vec<T>; 3],
     w: [Vec<T>; 3],
     radius: Vec<T>,
     outcome: Vec<Outcome>,
 }
 
-impl<T: Real> State<T> {
-    fn random(n: usize, spin: bool, seed: u64) -> Self {
+impl<T: Real> Workload<T> {
+    /// `n` random impacts from `seed`, with spin arrays when `spin`.
+    #[must_use]
+    pub fn random(n: usize, spin: bool, seed: u64) -> Self {
         let mut rng = StdRng::seed_from_u64(seed);
         let mut column =
             |f: &mut dyn FnMut(&mut StdRng) -> f64| (0..n).map(|_| T::from_f64(f(&mut rng))).collect::<Vec<T>>();
@@ -138,14 +142,16 @@ impl<T: Real> State<T> {
         Self { v: [vx, vy, vz], w, radius, outcome: vec![Outcome::default(); n] }
     }
 
-    fn restore(&mut self, pristine: &Self) {
+    /// Copies the particle state back from `pristine` (untimed, between timed calls).
+    pub fn restore(&mut self, pristine: &Self) {
         for k in 0..3 {
             self.v[k].copy_from_slice(&pristine.v[k]);
             self.w[k].copy_from_slice(&pristine.w[k]);
         }
     }
 
-    fn law_kernel(&mut self, law: &WallLaw) {
+    /// Applies `law` to the whole workload.
+    pub fn law_kernel(&mut self, law: &WallLaw) {
         let [vx, vy, vz] = &mut self.v;
         let batch = Impacts::new([vx, vy, vz], Normals::Uniform([T::ZERO, T::ZERO, T::ONE]), &mut self.outcome)
             .expect("consistent arrays");
@@ -158,8 +164,9 @@ impl<T: Real> State<T> {
         law.apply(batch, None);
     }
 
-    /// Reads and writes the same arrays as the law kernel, in the same pieces.
-    fn copy_kernel(&mut self) {
+    /// Reads and writes the same arrays as the law kernel, in the same pieces, with trivial
+    /// arithmetic: the memory ceiling.
+    pub fn copy_kernel(&mut self) {
         let [vx, vy, vz] = &mut self.v;
         let flip = |x: &mut T| *x = -*x;
         let spin = !self.radius.is_empty();
@@ -205,8 +212,8 @@ fn median(mut xs: Vec<Duration>) -> Duration {
     xs[xs.len() / 2]
 }
 
-/// Times a closure after waking every thread of the pool.
-fn timed(pool: &ThreadPool, f: impl FnOnce() + Send) -> Duration {
+/// Times a closure on `pool` after waking every thread of the pool with a broadcast.
+pub fn timed(pool: &ThreadPool, f: impl FnOnce() + Send) -> Duration {
     pool.broadcast(|_| ());
     pool.install(|| {
         let start = Instant::now();
@@ -217,8 +224,8 @@ fn timed(pool: &ThreadPool, f: impl FnOnce() + Send) -> Duration {
 
 fn measure_typed<T: Real>(scenario: Scenario, pool: &ThreadPool, reps: usize) -> Measurement {
     let law = scenario.law();
-    let pristine = State::<T>::random(scenario.n, scenario.spin, 42);
-    let mut state = State::<T>::random(scenario.n, scenario.spin, 42);
+    let pristine = Workload::<T>::random(scenario.n, scenario.spin, 42);
+    let mut state = Workload::<T>::random(scenario.n, scenario.spin, 42);
     let (mut kernel, mut ceiling) = (Vec::new(), Vec::new());
     for rep in 0..reps + 1 {
         state.restore(&pristine);
