@@ -113,10 +113,14 @@ impl Measurement {
 /// (normal +z), normal speeds log-uniform over 0.01..10 m/s (both sides of the law's `vc`),
 /// tangential speeds up to 1 m/s, spins up to 1e4 rad/s, radii 10..100 um.
 pub struct Workload<T> {
-    v: [Vec<T>; 3],
-    w: [Vec<T>; 3],
-    radius: Vec<T>,
-    outcome: Vec<Outcome>,
+    /// Velocity components, m/s.
+    pub v: [Vec<T>; 3],
+    /// Spin components, rad/s (empty without spin).
+    pub w: [Vec<T>; 3],
+    /// Radii, m (empty without spin).
+    pub radius: Vec<T>,
+    /// One outcome per particle.
+    pub outcome: Vec<Outcome>,
 }
 
 impl<T: Real> Workload<T> {
@@ -268,4 +272,41 @@ pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
         }
     }
     out
+}
+
+/// The largest deviation of `scenario`'s results from the f64, libm-pow kernel on the same
+/// `n` impacts, relative to each particle's incoming speed: `max |V - V_ref| / |v|`, with spin
+/// converted to a contact-point speed `r |W - W_ref|`. The error half of "run time against error".
+#[must_use]
+pub fn error_against_reference(scenario: Scenario, n: usize) -> f64 {
+    let reference_law = Scenario { precision: Precision::F64, power: PowerMode::Exact, ..scenario }.law();
+    let mut reference = Workload::<f64>::random(n, scenario.spin, 11);
+    let incoming = Workload::<f64>::random(n, scenario.spin, 11);
+    reference.law_kernel(&reference_law);
+    let law = scenario.law();
+    let (v, w): ([Vec<f64>; 3], [Vec<f64>; 3]) = match scenario.precision {
+        Precision::F64 => {
+            let mut work = Workload::<f64>::random(n, scenario.spin, 11);
+            work.law_kernel(&law);
+            (work.v, work.w)
+        }
+        Precision::F32 => {
+            let mut work = Workload::<f32>::random(n, scenario.spin, 11);
+            work.law_kernel(&law);
+            let widen = |c: &Vec<f32>| c.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
+            (work.v.each_ref().map(widen), work.w.each_ref().map(widen))
+        }
+    };
+    let mut worst = 0.0f64;
+    for i in 0..n {
+        let speed = (0..3).map(|k| incoming.v[k][i].powi(2)).sum::<f64>().sqrt();
+        let dv = (0..3).map(|k| (v[k][i] - reference.v[k][i]).powi(2)).sum::<f64>().sqrt();
+        let dw = if scenario.spin {
+            incoming.radius[i] * (0..3).map(|k| (w[k][i] - reference.w[k][i]).powi(2)).sum::<f64>().sqrt()
+        } else {
+            0.0
+        };
+        worst = worst.max((dv + dw) / speed);
+    }
+    worst
 }
