@@ -1,0 +1,512 @@
+//! # libdepo: the C ABI of depo
+//!
+//! Lets C, C++ and Fortran solvers apply the Brach & Dunn wall law to their own particle
+//! arrays, without copies. The header `include/depo.h` is generated from this file by cbindgen
+//! (`cbindgen.toml`); `fortran/depo.f90` and `include/depo.hpp` wrap it for Fortran and C++.
+//!
+//! Conventions, after rustls-ffi:
+//! - Every function returns an `int32_t` status (`DEPO_OK`, `DEPO_ERR_*`); the message of the
+//!   last failure on the calling thread is `depo_last_error()`.
+//! - Every exported body runs inside [`ffi_guard!`]: a panic becomes `DEPO_ERR_PANIC` with its
+//!   message kept, never an unwind into the host solver.
+//! - Handles are opaque; `depo_law_new`/`depo_law_preset` make one, `depo_law_free` takes NULL.
+//!   The handle comes first, then inputs, then outputs.
+//! - Outputs are written only on success: a call that fails changes nothing.
+//! - Status codes keep their values forever; a retired one stays as a comment.
+//!
+//! Bad particles are not errors: they are flagged `DEPO_INVALID` per particle and left
+//! untouched while the rest of the batch is processed.
+
+#![allow(clippy::missing_safety_doc)] // the safety contract of every function is in its C doc
+
+use std::cell::RefCell;
+use std::ffi::{c_char, CStr, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::{Arc, RwLock};
+
+use depo_wall_model::{Impacts, LawParams, Normals, Outcome, Real, Tally, WallLaw};
+
+/// Success.
+pub const DEPO_OK: i32 = 0;
+/// A pointer that must not be NULL was NULL.
+pub const DEPO_ERR_NULL: i32 = 1;
+/// A value out of its valid range: a law parameter, a batch normal, an unknown preset id,
+/// overlapping arrays, a face id out of range.
+pub const DEPO_ERR_INVALID: i32 = 2;
+/// depo panicked; the message is in `depo_last_error()`. A bug: please report it.
+pub const DEPO_ERR_PANIC: i32 = 3;
+
+/// The particle hit the wall and rebounded: velocity (and spin) updated.
+pub const DEPO_REBOUND: u8 = 0;
+/// The particle hit the wall and was captured: velocity (and spin) set to zero.
+pub const DEPO_CAPTURED: u8 = 1;
+/// Not an impact (`v . n >= 0`): untouched.
+pub const DEPO_SKIPPED: u8 = 2;
+/// Non-finite velocity or spin, radius `<= 0`, or a per-particle normal not of unit length
+/// within 1e-4: untouched.
+pub const DEPO_INVALID: u8 = 3;
+
+/// The constants of the law (SI units; see MODEL.md): restitution velocities `k1, k2` (m/s),
+/// adhesion velocities `kappa1, kappa2` (m/s), exponents `p, q`, capture velocity `vc` (m/s,
+/// `<= 0`: never captured by speed), friction coefficient `mu`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DepoLawParams {
+    pub k1: f64,
+    pub k2: f64,
+    pub kappa1: f64,
+    pub kappa2: f64,
+    pub p: f64,
+    pub q: f64,
+    pub vc: f64,
+    pub mu: f64,
+}
+
+/// Counts of each outcome, added to by every successful `depo_apply_*` call that is given it
+/// (zero it before the first), and the energy lost by each mechanism, summed over impacts per
+/// unit particle mass (J/kg).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DepoTally {
+    pub rebound: u64,
+    pub captured: u64,
+    pub skipped: u64,
+    pub invalid: u64,
+    /// Material dissipation, `T_n (1 - R^2)`.
+    pub energy_material: f64,
+    /// Adhesion dissipation, `T_n R^2 rho (2 - rho)`.
+    pub energy_adhesion: f64,
+    /// Friction dissipation in the contact.
+    pub energy_friction: f64,
+    /// Kinetic energy carried onto the wall by deposited particles.
+    pub energy_deposition: f64,
+}
+
+/// A batch of wall contacts in double precision, as structure-of-arrays pointers into the
+/// host's memory. Arrays must not overlap.
+#[repr(C)]
+#[derive(Debug)]
+pub struct DepoImpactsF64 {
+    /// Number of particles.
+    pub n: usize,
+    /// In/out velocity (m/s), required when `n > 0`.
+    pub vx: *mut f64,
+    pub vy: *mut f64,
+    pub vz: *mut f64,
+    /// In/out spin (rad/s); all three NULL: spin not tracked (taken as zero).
+    pub wx: *mut f64,
+    pub wy: *mut f64,
+    pub wz: *mut f64,
+    /// Radius (m), required when spin is tracked.
+    pub radius: *const f64,
+    /// Per-particle unit normals into the fluid; all three NULL: use `normal`.
+    pub nx: *const f64,
+    pub ny: *const f64,
+    pub nz: *const f64,
+    /// One unit normal for the whole batch (used when `nx, ny, nz` are NULL).
+    pub normal: [f64; 3],
+    /// Out: one `DEPO_*` outcome per particle, required when `n > 0`.
+    pub outcome: *mut u8,
+}
+
+/// `DepoImpactsF64` in single precision.
+#[repr(C)]
+#[derive(Debug)]
+pub struct DepoImpactsF32 {
+    pub n: usize,
+    pub vx: *mut f32,
+    pub vy: *mut f32,
+    pub vz: *mut f32,
+    pub wx: *mut f32,
+    pub wy: *mut f32,
+    pub wz: *mut f32,
+    pub radius: *const f32,
+    pub nx: *const f32,
+    pub ny: *const f32,
+    pub nz: *const f32,
+    pub normal: [f32; 3],
+    pub outcome: *mut u8,
+}
+
+/// An opaque wall law: validated constants, made by `depo_law_new` or `depo_law_preset`, freed by
+/// `depo_law_free`. Safe to share between threads for reading.
+pub struct DepoWallLaw {
+    law: WallLaw,
+}
+
+/// A failure to report: a status and its message.
+struct Failure(i32, String);
+
+impl Failure {
+    fn null(what: &str) -> Self {
+        Failure(DEPO_ERR_NULL, format!("{what} is NULL"))
+    }
+    fn invalid(message: impl Into<String>) -> Self {
+        Failure(DEPO_ERR_INVALID, message.into())
+    }
+}
+
+thread_local! {
+    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+}
+
+fn set_last_error(message: &str) {
+    let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    LAST_ERROR.with(|cell| *cell.borrow_mut() = text);
+}
+
+/// Runs an exported body: its `Result` becomes a status, a panic becomes `DEPO_ERR_PANIC`, and
+/// every failure leaves its message for `depo_last_error()`.
+macro_rules! ffi_guard {
+    ($body:block) => {{
+        let result: std::thread::Result<Result<(), Failure>> = catch_unwind(AssertUnwindSafe(|| $body));
+        match result {
+            Ok(Ok(())) => DEPO_OK,
+            Ok(Err(Failure(status, message))) => {
+                set_last_error(&message);
+                status
+            }
+            Err(panic) => {
+                let message = panic
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| panic.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "unknown panic".into());
+                set_last_error(&format!("depo panicked: {message}"));
+                DEPO_ERR_PANIC
+            }
+        }
+    }};
+}
+
+mod deposition;
+pub use deposition::depo_accumulate_deposits;
+
+/// `&T` from a pointer that must not be NULL.
+unsafe fn required<'a, T>(ptr: *const T, what: &str) -> Result<&'a T, Failure> {
+    ptr.as_ref().ok_or_else(|| Failure::null(what))
+}
+
+/// A slice from a pointer that must not be NULL when `n > 0`.
+unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<&'a [T], Failure> {
+    if n == 0 {
+        Ok(&[])
+    } else if ptr.is_null() {
+        Err(Failure::null(what))
+    } else {
+        Ok(std::slice::from_raw_parts(ptr, n))
+    }
+}
+
+/// A mutable slice from a pointer that must not be NULL when `n > 0`.
+unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Result<&'a mut [T], Failure> {
+    if n == 0 {
+        Ok(&mut [])
+    } else if ptr.is_null() {
+        Err(Failure::null(what))
+    } else {
+        Ok(std::slice::from_raw_parts_mut(ptr, n))
+    }
+}
+
+/// The message of the last failure on the calling thread ("" if none), valid until the next
+/// failing depo call on this thread. Never NULL.
+#[no_mangle]
+pub extern "C" fn depo_last_error() -> *const c_char {
+    LAST_ERROR.with(|cell| cell.borrow().as_ptr())
+}
+
+/// The library version, "MAJOR.MINOR.PATCH", the same as `DEPO_VERSION` in the header it was
+/// built with. Never NULL.
+#[no_mangle]
+pub extern "C" fn depo_version() -> *const c_char {
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
+}
+
+/// Makes a law from `params`. On `DEPO_ERR_INVALID` no law is made, `*out` is unchanged, and
+/// `depo_last_error()` names the bad field and its value.
+#[no_mangle]
+pub unsafe extern "C" fn depo_law_new(params: *const DepoLawParams, out: *mut *mut DepoWallLaw) -> i32 {
+    ffi_guard!({
+        let p = required(params, "params")?;
+        if out.is_null() {
+            return Err(Failure::null("out"));
+        }
+        let params =
+            LawParams { k1: p.k1, k2: p.k2, kappa1: p.kappa1, kappa2: p.kappa2, p: p.p, q: p.q, vc: p.vc, mu: p.mu };
+        let law = WallLaw::new(params).map_err(|e| Failure::invalid(e.to_string()))?;
+        *out = Box::into_raw(Box::new(DepoWallLaw { law }));
+        Ok(())
+    })
+}
+
+/// Makes the law of a preset of the paper's Table 1 by id (e.g. "li1997-sio2"; friction 0).
+/// An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()`.
+#[no_mangle]
+pub unsafe extern "C" fn depo_law_preset(id: *const c_char, out: *mut *mut DepoWallLaw) -> i32 {
+    ffi_guard!({
+        if id.is_null() {
+            return Err(Failure::null("id"));
+        }
+        if out.is_null() {
+            return Err(Failure::null("out"));
+        }
+        let id = CStr::from_ptr(id).to_str().map_err(|_| Failure::invalid("preset id is not UTF-8"))?;
+        let law = WallLaw::preset(id).map_err(|e| Failure::invalid(e.to_string()))?;
+        *out = Box::into_raw(Box::new(DepoWallLaw { law }));
+        Ok(())
+    })
+}
+
+/// Writes the constants of `law` to `*params`.
+#[no_mangle]
+pub unsafe extern "C" fn depo_law_params(law: *const DepoWallLaw, params: *mut DepoLawParams) -> i32 {
+    ffi_guard!({
+        let law = required(law, "law")?;
+        if params.is_null() {
+            return Err(Failure::null("params"));
+        }
+        let p = law.law.params();
+        *params = DepoLawParams {
+            k1: p.k1,
+            k2: p.k2,
+            kappa1: p.kappa1,
+            kappa2: p.kappa2,
+            p: p.p,
+            q: p.q,
+            vc: p.vc,
+            mu: p.mu,
+        };
+        Ok(())
+    })
+}
+
+/// Frees a law made by `depo_law_new` or `depo_law_preset`. NULL is fine.
+#[no_mangle]
+pub unsafe extern "C" fn depo_law_free(law: *mut DepoWallLaw) {
+    if !law.is_null() {
+        let _ = catch_unwind(AssertUnwindSafe(|| drop(Box::from_raw(law))));
+    }
+}
+
+/// The law's coefficients at `n` normal velocities `vn` (m/s; the sign is ignored): overall
+/// restitution `e`, material restitution `R`, adhesion `rho`, and 1 where captured else 0.
+/// Any output may be NULL. A non-finite `vn` is `DEPO_ERR_INVALID` and writes nothing.
+#[no_mangle]
+#[allow(non_snake_case)] // `R` is the paper's name, and the header's
+pub unsafe extern "C" fn depo_coefficients(
+    law: *const DepoWallLaw,
+    n: usize,
+    vn: *const f64,
+    e: *mut f64,
+    R: *mut f64,
+    rho: *mut f64,
+    captured: *mut u8,
+) -> i32 {
+    ffi_guard!({
+        let law = &required(law, "law")?.law;
+        let vn = slice(vn, n, "vn")?;
+        if let Some(i) = vn.iter().position(|v| !v.is_finite()) {
+            return Err(Failure::invalid(format!("vn[{i}] = {} is not finite", vn[i])));
+        }
+        let mut outputs = (
+            (!e.is_null()).then(|| slice_mut(e, n, "e")).transpose()?,
+            (!R.is_null()).then(|| slice_mut(R, n, "R")).transpose()?,
+            (!rho.is_null()).then(|| slice_mut(rho, n, "rho")).transpose()?,
+            (!captured.is_null()).then(|| slice_mut(captured, n, "captured")).transpose()?,
+        );
+        for (i, &v) in vn.iter().enumerate() {
+            let c = law.coefficients(v);
+            if let Some(out) = outputs.0.as_deref_mut() {
+                out[i] = c.overall;
+            }
+            if let Some(out) = outputs.1.as_deref_mut() {
+                out[i] = c.restitution;
+            }
+            if let Some(out) = outputs.2.as_deref_mut() {
+                out[i] = c.adhesion;
+            }
+            if let Some(out) = outputs.3.as_deref_mut() {
+                out[i] = u8::from(c.captured);
+            }
+        }
+        Ok(())
+    })
+}
+
+/// The thread pool for depo's calls, if the host capped it; otherwise rayon's global pool.
+static POOL: RwLock<Option<Arc<rayon::ThreadPool>>> = RwLock::new(None);
+
+/// Caps the threads depo uses for large batches at `threads` (0: rayon's default, one per
+/// core or `RAYON_NUM_THREADS`). Host solvers that run their own OpenMP threads or one MPI rank
+/// per core call it with 1. Batches below 65536 particles always run on the calling thread.
+#[no_mangle]
+pub extern "C" fn depo_set_num_threads(threads: usize) -> i32 {
+    ffi_guard!({
+        let pool = if threads == 0 {
+            None
+        } else {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .thread_name(|i| format!("depo-{i}"))
+                .build()
+                .map_err(|e| Failure::invalid(format!("cannot start {threads} threads: {e}")))?;
+            Some(Arc::new(pool))
+        };
+        *POOL.write().unwrap_or_else(|e| e.into_inner()) = pool;
+        Ok(())
+    })
+}
+
+/// Runs `f` on the capped pool if there is one.
+fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
+    let pool = POOL.read().unwrap_or_else(|e| e.into_inner()).clone();
+    match pool {
+        Some(pool) => pool.install(f),
+        None => f(),
+    }
+}
+
+/// The byte range an array occupies, for the overlap check.
+fn span<T>(s: &[T]) -> (usize, usize) {
+    let start = s.as_ptr() as usize;
+    (start, start + std::mem::size_of_val(s))
+}
+
+/// Fails if any two non-empty arrays overlap (creating the slices would otherwise be undefined
+/// behaviour). O(arrays^2), independent of `n`.
+fn check_disjoint(arrays: &[(&str, (usize, usize))]) -> Result<(), Failure> {
+    for (i, (name_a, (a0, a1))) in arrays.iter().enumerate() {
+        for (name_b, (b0, b1)) in &arrays[i + 1..] {
+            if a0 < a1 && b0 < b1 && a0 < b1 && b0 < a1 {
+                return Err(Failure::invalid(format!("arrays {name_a} and {name_b} overlap")));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The raw pointers of one batch, either precision.
+struct RawBatch<T> {
+    n: usize,
+    v: [*mut T; 3],
+    w: [*mut T; 3],
+    radius: *const T,
+    normals: [*const T; 3],
+    normal: [T; 3],
+    outcome: *mut u8,
+}
+
+/// Checks a raw batch and applies the law to it; the tally is added to only on success.
+unsafe fn apply_raw<T: Real>(law: *const DepoWallLaw, raw: RawBatch<T>, tally: *mut DepoTally) -> Result<(), Failure> {
+    let law = &required(law, "law")?.law;
+    let n = raw.n;
+    let [vx, vy, vz] = raw.v;
+    let vx = slice_mut(vx, n, "vx")?;
+    let vy = slice_mut(vy, n, "vy")?;
+    let vz = slice_mut(vz, n, "vz")?;
+    let outcome = slice_mut(raw.outcome.cast::<Outcome>(), n, "outcome")?;
+    let spin_given = raw.w.map(|p| !p.is_null());
+    let spin = match spin_given {
+        [false, false, false] => None,
+        [true, true, true] => Some((
+            slice_mut(raw.w[0], n, "wx")?,
+            slice_mut(raw.w[1], n, "wy")?,
+            slice_mut(raw.w[2], n, "wz")?,
+            slice(raw.radius, n, "radius (required with spin)")?,
+        )),
+        _ => return Err(Failure::null("one of wx, wy, wz (give all three or none)")),
+    };
+    let normals_given = raw.normals.map(|p| !p.is_null());
+    let per_particle = match normals_given {
+        [false, false, false] => None,
+        [true, true, true] => {
+            Some([slice(raw.normals[0], n, "nx")?, slice(raw.normals[1], n, "ny")?, slice(raw.normals[2], n, "nz")?])
+        }
+        _ => return Err(Failure::null("one of nx, ny, nz (give all three or none)")),
+    };
+
+    let mut arrays = vec![("vx", span(vx)), ("vy", span(vy)), ("vz", span(vz)), ("outcome", span(outcome))];
+    if let Some((wx, wy, wz, radius)) = &spin {
+        arrays.extend([("wx", span(wx)), ("wy", span(wy)), ("wz", span(wz)), ("radius", span(radius))]);
+    }
+    if let Some([nx, ny, nz]) = &per_particle {
+        arrays.extend([("nx", span(nx)), ("ny", span(ny)), ("nz", span(nz))]);
+    }
+    check_disjoint(&arrays)?;
+
+    let normals = match per_particle {
+        Some(n) => Normals::PerParticle(n),
+        None => Normals::Uniform(raw.normal),
+    };
+    let mut batch = Impacts::new([vx, vy, vz], normals, outcome).map_err(|e| Failure::invalid(e.to_string()))?;
+    if let Some((wx, wy, wz, radius)) = spin {
+        batch = batch.with_spin([wx, wy, wz], radius).map_err(|e| Failure::invalid(e.to_string()))?;
+    }
+    if tally.is_null() {
+        on_pool(|| law.apply(batch, None));
+    } else {
+        let mut sums = Tally::default();
+        on_pool(|| law.apply(batch, Some(&mut sums)));
+        let t = &mut *tally;
+        t.rebound += sums.rebound;
+        t.captured += sums.captured;
+        t.skipped += sums.skipped;
+        t.invalid += sums.invalid;
+        t.energy_material += sums.energy.material;
+        t.energy_adhesion += sums.energy.adhesion;
+        t.energy_friction += sums.energy.friction;
+        t.energy_deposition += sums.energy.deposition;
+    }
+    Ok(())
+}
+
+/// Applies `law` to every particle of `batch` in place, writing one outcome per particle, and
+/// adds the batch's counts and energy to `*tally` unless it is NULL. A batch normal not of unit
+/// length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`.
+#[no_mangle]
+pub unsafe extern "C" fn depo_apply_f64(
+    law: *const DepoWallLaw,
+    batch: *mut DepoImpactsF64,
+    tally: *mut DepoTally,
+) -> i32 {
+    ffi_guard!({
+        let b = required(batch.cast_const(), "batch")?;
+        let raw = RawBatch {
+            n: b.n,
+            v: [b.vx, b.vy, b.vz],
+            w: [b.wx, b.wy, b.wz],
+            radius: b.radius,
+            normals: [b.nx, b.ny, b.nz],
+            normal: b.normal,
+            outcome: b.outcome,
+        };
+        apply_raw(law, raw, tally)
+    })
+}
+
+/// `depo_apply_f64` in single precision (results within 1e-4 of the incoming speed of the
+/// double-precision ones away from the capture and rolling thresholds).
+#[no_mangle]
+pub unsafe extern "C" fn depo_apply_f32(
+    law: *const DepoWallLaw,
+    batch: *mut DepoImpactsF32,
+    tally: *mut DepoTally,
+) -> i32 {
+    ffi_guard!({
+        let b = required(batch.cast_const(), "batch")?;
+        let raw = RawBatch {
+            n: b.n,
+            v: [b.vx, b.vy, b.vz],
+            w: [b.wx, b.wy, b.wz],
+            radius: b.radius,
+            normals: [b.nx, b.ny, b.nz],
+            normal: b.normal,
+            outcome: b.outcome,
+        };
+        apply_raw(law, raw, tally)
+    })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,411 @@
+//! Every entry point from the Rust side: NULLs, zero lengths, NaN and infinity, extreme values,
+//! random batches against the `wall-model` crate, and f64 against f32.
+
+use super::*;
+use depo_wall_model::CaptureMode;
+use proptest::prelude::*;
+use std::ptr::{null, null_mut};
+
+fn last_error() -> String {
+    unsafe { CStr::from_ptr(depo_last_error()) }.to_string_lossy().into_owned()
+}
+
+fn li1997() -> DepoLawParams {
+    DepoLawParams { k1: 12.5, k2: 12.5, kappa1: 0.065, kappa2: 0.065, p: 1.0, q: 0.5, vc: 0.074, mu: 0.3 }
+}
+
+fn new_law(params: DepoLawParams) -> *mut DepoWallLaw {
+    let mut law = null_mut();
+    assert_eq!(unsafe { depo_law_new(&params, &mut law) }, DEPO_OK, "{}", last_error());
+    law
+}
+
+/// One particle: velocity, spin, radius, normal.
+type Row = ([f64; 3], [f64; 3], f64, [f64; 3]);
+
+/// Owned arrays for one f64 batch, with a view builder.
+struct Arrays {
+    v: [Vec<f64>; 3],
+    w: [Vec<f64>; 3],
+    radius: Vec<f64>,
+    normals: [Vec<f64>; 3],
+    outcome: Vec<u8>,
+}
+
+impl Arrays {
+    fn new(rows: &[Row]) -> Self {
+        let col = |f: &dyn Fn(usize) -> f64| (0..rows.len()).map(f).collect::<Vec<_>>();
+        Self {
+            v: [col(&|i| rows[i].0[0]), col(&|i| rows[i].0[1]), col(&|i| rows[i].0[2])],
+            w: [col(&|i| rows[i].1[0]), col(&|i| rows[i].1[1]), col(&|i| rows[i].1[2])],
+            radius: col(&|i| rows[i].2),
+            normals: [col(&|i| rows[i].3[0]), col(&|i| rows[i].3[1]), col(&|i| rows[i].3[2])],
+            outcome: vec![255; rows.len()],
+        }
+    }
+
+    fn batch(&mut self, spin: bool, per_particle: bool) -> DepoImpactsF64 {
+        let [vx, vy, vz] = &mut self.v;
+        let [wx, wy, wz] = &mut self.w;
+        DepoImpactsF64 {
+            n: self.outcome.len(),
+            vx: vx.as_mut_ptr(),
+            vy: vy.as_mut_ptr(),
+            vz: vz.as_mut_ptr(),
+            wx: if spin { wx.as_mut_ptr() } else { null_mut() },
+            wy: if spin { wy.as_mut_ptr() } else { null_mut() },
+            wz: if spin { wz.as_mut_ptr() } else { null_mut() },
+            radius: if spin { self.radius.as_ptr() } else { null() },
+            nx: if per_particle { self.normals[0].as_ptr() } else { null() },
+            ny: if per_particle { self.normals[1].as_ptr() } else { null() },
+            nz: if per_particle { self.normals[2].as_ptr() } else { null() },
+            normal: [0.0, 0.0, 1.0],
+            outcome: self.outcome.as_mut_ptr(),
+        }
+    }
+}
+
+#[test]
+fn law_new_rejects_bad_parameters_by_name_and_makes_nothing() {
+    let mut law = null_mut();
+    let bad = DepoLawParams { kappa2: -1.0, ..li1997() };
+    assert_eq!(unsafe { depo_law_new(&bad, &mut law) }, DEPO_ERR_INVALID);
+    assert!(law.is_null());
+    assert!(last_error().contains("kappa2 = -1"), "{}", last_error());
+    let nan = DepoLawParams { vc: f64::NAN, ..li1997() };
+    assert_eq!(unsafe { depo_law_new(&nan, &mut law) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("vc"));
+    assert_eq!(unsafe { depo_law_new(null(), &mut law) }, DEPO_ERR_NULL);
+    assert!(last_error().contains("params"));
+    assert_eq!(unsafe { depo_law_new(&li1997(), null_mut()) }, DEPO_ERR_NULL);
+}
+
+#[test]
+fn presets_by_id_and_unknown_ids() {
+    let mut law = null_mut();
+    assert_eq!(unsafe { depo_law_preset(c"sim-70um".as_ptr(), &mut law) }, DEPO_OK);
+    let mut params = DepoLawParams { k1: 0.0, k2: 0.0, kappa1: 0.0, kappa2: 0.0, p: 0.0, q: 0.0, vc: 0.0, mu: 0.0 };
+    assert_eq!(unsafe { depo_law_params(law, &mut params) }, DEPO_OK);
+    assert_eq!((params.k1, params.kappa1, params.vc, params.q), (12.5, 0.065, 0.074, 0.5));
+    unsafe { depo_law_free(law) };
+    let mut other = null_mut();
+    assert_eq!(unsafe { depo_law_preset(c"granite".as_ptr(), &mut other) }, DEPO_ERR_INVALID);
+    assert!(other.is_null());
+    assert!(last_error().contains("granite") && last_error().contains("li1997-sio2"));
+    assert_eq!(unsafe { depo_law_preset(null(), &mut other) }, DEPO_ERR_NULL);
+    unsafe { depo_law_free(null_mut()) }; // NULL is fine
+}
+
+#[test]
+fn version_matches_the_crate() {
+    let v = unsafe { CStr::from_ptr(depo_version()) }.to_str().unwrap();
+    assert_eq!(v, env!("CARGO_PKG_VERSION"));
+}
+
+#[test]
+fn coefficients_match_the_law_with_optional_outputs() {
+    let law = new_law(li1997());
+    let vn = [-1.0, 0.05, 0.074, 5.0, 0.0, 1e300];
+    let (mut e, mut r, mut rho, mut cap) = ([9.0; 6], [9.0; 6], [9.0; 6], [9u8; 6]);
+    let status = unsafe {
+        depo_coefficients(law, 6, vn.as_ptr(), e.as_mut_ptr(), r.as_mut_ptr(), rho.as_mut_ptr(), cap.as_mut_ptr())
+    };
+    assert_eq!(status, DEPO_OK);
+    let reference = WallLaw::preset("li1997-sio2").unwrap();
+    for i in 0..6 {
+        let c = reference.coefficients(vn[i]);
+        assert_eq!((e[i], r[i], rho[i], cap[i]), (c.overall, c.restitution, c.adhesion, u8::from(c.captured)));
+    }
+    assert!((e[0] - 0.731_990_683).abs() < 1e-9);
+    assert_eq!(cap, [0, 1, 1, 0, 1, 0]);
+    // Outputs may be NULL; vn may be NULL only when n = 0; non-finite vn writes nothing.
+    assert_eq!(
+        unsafe { depo_coefficients(law, 6, vn.as_ptr(), null_mut(), null_mut(), null_mut(), null_mut()) },
+        DEPO_OK
+    );
+    assert_eq!(unsafe { depo_coefficients(law, 0, null(), null_mut(), null_mut(), null_mut(), null_mut()) }, DEPO_OK);
+    assert_eq!(
+        unsafe { depo_coefficients(law, 1, null(), e.as_mut_ptr(), null_mut(), null_mut(), null_mut()) },
+        DEPO_ERR_NULL
+    );
+    let bad = [1.0, f64::NAN];
+    let mut out = [7.0; 2];
+    assert_eq!(
+        unsafe { depo_coefficients(law, 2, bad.as_ptr(), out.as_mut_ptr(), null_mut(), null_mut(), null_mut()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(out, [7.0; 2]);
+    assert!(last_error().contains("vn[1]"));
+    assert_eq!(
+        unsafe { depo_coefficients(null(), 0, null(), null_mut(), null_mut(), null_mut(), null_mut()) },
+        DEPO_ERR_NULL
+    );
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn apply_checks_pointers_normal_and_overlap_and_changes_nothing_on_failure() {
+    let law = new_law(li1997());
+    let rows = [([0.1, 0.0, -1.0], [0.0; 3], 1e-5, [0.0, 0.0, 1.0]); 4];
+    let mut a = Arrays::new(&rows);
+    let mut tally = DepoTally::default();
+
+    assert_eq!(unsafe { depo_apply_f64(null(), &mut a.batch(false, false), &mut tally) }, DEPO_ERR_NULL);
+    assert_eq!(unsafe { depo_apply_f64(law, null_mut(), &mut tally) }, DEPO_ERR_NULL);
+    let mut b = a.batch(false, false);
+    b.vy = null_mut();
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, &mut tally) }, DEPO_ERR_NULL);
+    assert!(last_error().contains("vy"));
+    let mut b = a.batch(true, false);
+    b.wz = null_mut();
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, &mut tally) }, DEPO_ERR_NULL);
+    let mut b = a.batch(true, false);
+    b.radius = null();
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, &mut tally) }, DEPO_ERR_NULL);
+    assert!(last_error().contains("radius"));
+    let mut b = a.batch(false, true);
+    b.ny = null();
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, &mut tally) }, DEPO_ERR_NULL);
+    let mut b = a.batch(false, false);
+    b.normal = [0.0, 0.0, 1.01];
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, &mut tally) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("normal"));
+    let mut b = a.batch(false, false);
+    b.normal = [0.0, f64::NAN, 1.0];
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, &mut tally) }, DEPO_ERR_INVALID);
+    let mut b = a.batch(false, false);
+    b.vy = b.vx; // overlapping arrays
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, &mut tally) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("overlap"), "{}", last_error());
+    // Nothing was touched by any failed call.
+    assert_eq!(a.outcome, [255; 4]);
+    assert_eq!(a.v[2], [-1.0; 4]);
+    assert_eq!(tally, DepoTally::default());
+
+    // Zero length: every pointer may be NULL.
+    let mut empty = DepoImpactsF64 {
+        n: 0,
+        vx: null_mut(),
+        vy: null_mut(),
+        vz: null_mut(),
+        wx: null_mut(),
+        wy: null_mut(),
+        wz: null_mut(),
+        radius: null(),
+        nx: null(),
+        ny: null(),
+        nz: null(),
+        normal: [0.0, 0.0, 1.0],
+        outcome: null_mut(),
+    };
+    assert_eq!(unsafe { depo_apply_f64(law, &mut empty, &mut tally) }, DEPO_OK);
+    assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(false, false), null_mut()) }, DEPO_OK);
+    assert_eq!(a.outcome, [DEPO_REBOUND; 4]);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn bad_particles_are_flagged_and_the_tally_adds_up() {
+    let law = new_law(li1997());
+    let up = [0.0, 0.0, 1.0];
+    let rows = [
+        ([0.1, 0.0, -1.0], [0.0, 50.0, 0.0], 1e-5, up),
+        ([f64::NAN, 0.0, -1.0], [0.0; 3], 1e-5, up),
+        ([0.1, 0.0, -1.0], [0.0; 3], 0.0, up),
+        ([0.1, 0.0, -1.0], [0.0; 3], 1e-5, [0.0, 0.0, 1.1]),
+        ([0.1, 0.0, 0.3], [0.0; 3], 1e-5, up),
+        ([0.1, 0.0, -0.01], [0.0; 3], 1e-5, up),
+        ([1e300, -1e300, -1e300], [1e9, 1e9, 1e9], 1e-9, up),
+    ];
+    let mut a = Arrays::new(&rows);
+    let mut tally = DepoTally { rebound: 100, ..DepoTally::default() };
+    assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(true, true), &mut tally) }, DEPO_OK);
+    assert_eq!(
+        a.outcome,
+        [DEPO_REBOUND, DEPO_INVALID, DEPO_INVALID, DEPO_INVALID, DEPO_SKIPPED, DEPO_CAPTURED, DEPO_REBOUND]
+    );
+    assert_eq!((tally.rebound, tally.captured, tally.skipped, tally.invalid), (102, 1, 1, 3));
+    assert!(a.v[0][1].is_nan() && a.radius[2] == 0.0 && a.v[2][3] == -1.0);
+    assert_eq!([a.v[0][5], a.v[1][5], a.v[2][5]], [0.0; 3]);
+    for k in 0..3 {
+        assert!(a.v[k].iter().chain(&a.w[k]).enumerate().all(|(i, x)| i == 1 || x.is_finite()));
+    }
+    assert!(tally.energy_material > 0.0 && tally.energy_adhesion > 0.0 && tally.energy_friction > 0.0);
+    assert!(tally.energy_deposition > 0.0, "the captured particle carried tangential energy");
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn f32_and_f64_entry_points_agree() {
+    let law = new_law(li1997());
+    let n = 1000;
+    let rows: Vec<_> = (0..n)
+        .map(|i| {
+            let t = i as f64 / n as f64;
+            (
+                [0.3 * (7.0 * t).sin(), 0.2 * (3.0 * t).cos(), -0.2 - 4.0 * t],
+                [1e3 * t, -2e3, 5e2],
+                2e-5,
+                [0.0, 0.0, 1.0],
+            )
+        })
+        .collect();
+    let mut a = Arrays::new(&rows);
+    assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(true, false), null_mut()) }, DEPO_OK);
+    let f = |c: &[f64]| c.iter().map(|&x| x as f32).collect::<Vec<f32>>();
+    let mut v32 = [f(&Arrays::new(&rows).v[0]), f(&Arrays::new(&rows).v[1]), f(&Arrays::new(&rows).v[2])];
+    let mut w32 = [f(&Arrays::new(&rows).w[0]), f(&Arrays::new(&rows).w[1]), f(&Arrays::new(&rows).w[2])];
+    let r32 = f(&a.radius);
+    let mut out32 = vec![0u8; n];
+    let [vx, vy, vz] = &mut v32;
+    let [wx, wy, wz] = &mut w32;
+    let mut b = DepoImpactsF32 {
+        n,
+        vx: vx.as_mut_ptr(),
+        vy: vy.as_mut_ptr(),
+        vz: vz.as_mut_ptr(),
+        wx: wx.as_mut_ptr(),
+        wy: wy.as_mut_ptr(),
+        wz: wz.as_mut_ptr(),
+        radius: r32.as_ptr(),
+        nx: null(),
+        ny: null(),
+        nz: null(),
+        normal: [0.0, 0.0, 1.0],
+        outcome: out32.as_mut_ptr(),
+    };
+    assert_eq!(unsafe { depo_apply_f32(law, &mut b, null_mut()) }, DEPO_OK);
+    let vc = 0.074;
+    let mut compared = 0;
+    for i in 0..n {
+        let speed = -rows[i].0[2];
+        if (speed - vc).abs() < 0.01 {
+            continue; // at the capture threshold a last-bit difference may flip the outcome
+        }
+        assert_eq!(out32[i], a.outcome[i]);
+        let scale = (rows[i].0.iter().map(|x| x * x).sum::<f64>()).sqrt();
+        for k in 0..3 {
+            assert!((f64::from(v32[k][i]) - a.v[k][i]).abs() <= 1e-4 * scale, "particle {i}");
+            assert!((f64::from(w32[k][i]) - a.w[k][i]).abs() * 2e-5 <= 1e-4 * scale, "particle {i} spin");
+        }
+        compared += 1;
+    }
+    assert!(compared > 900);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn thread_cap_gives_the_same_results() {
+    let law = new_law(DepoLawParams { p: 1.3, q: 0.7, ..li1997() });
+    let rows: Vec<_> = (0..150_000)
+        .map(|i| {
+            (
+                [((i * 37) % 101) as f64 / 101.0, 0.1, -0.01 - ((i * 13) % 97) as f64 / 20.0],
+                [0.0; 3],
+                1e-5,
+                [0.0, 0.0, 1.0],
+            )
+        })
+        .collect();
+    let run = |threads: usize| {
+        assert_eq!(depo_set_num_threads(threads), DEPO_OK);
+        let mut a = Arrays::new(&rows);
+        let mut tally = DepoTally::default();
+        assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(false, false), &mut tally) }, DEPO_OK);
+        (a.v, a.outcome, tally)
+    };
+    let one = run(1);
+    let two = run(2);
+    let default = run(0);
+    assert_eq!(one.2, two.2);
+    assert_eq!(one.2, default.2);
+    assert!(one.0.iter().zip(&two.0).all(|(a, b)| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())));
+    assert_eq!(one.1, two.1);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn deposition_map_counts_captured_particles_per_face() {
+    let outcome = [DEPO_CAPTURED, DEPO_REBOUND, DEPO_CAPTURED, DEPO_CAPTURED, DEPO_INVALID];
+    let face = [2i64, 99, 0, 2, -5]; // ids of non-captured particles are not read
+    let mass = [1e-12, 5.0, 2e-12, 3e-12, 7.0];
+    let (mut count, mut deposited) = ([0u64; 3], [0.0f64; 3]);
+    let status = unsafe {
+        depo_accumulate_deposits(
+            5,
+            outcome.as_ptr(),
+            face.as_ptr(),
+            mass.as_ptr(),
+            3,
+            count.as_mut_ptr(),
+            deposited.as_mut_ptr(),
+        )
+    };
+    assert_eq!(status, DEPO_OK);
+    assert_eq!(count, [1, 0, 2]);
+    assert_eq!(deposited, [2e-12, 0.0, 4e-12]);
+    // Without masses only counts; an id out of range changes nothing.
+    let status = unsafe {
+        depo_accumulate_deposits(5, outcome.as_ptr(), face.as_ptr(), null(), 3, count.as_mut_ptr(), null_mut())
+    };
+    assert_eq!((status, count), (DEPO_OK, [2, 0, 4]));
+    let bad_face = [2i64, 0, 3, 0, 0];
+    let status = unsafe {
+        depo_accumulate_deposits(5, outcome.as_ptr(), bad_face.as_ptr(), null(), 3, count.as_mut_ptr(), null_mut())
+    };
+    assert_eq!((status, count), (DEPO_ERR_INVALID, [2, 0, 4]));
+    assert!(last_error().contains("face[2] = 3"));
+    assert_eq!(unsafe { depo_accumulate_deposits(0, null(), null(), null(), 0, null_mut(), null_mut()) }, DEPO_OK);
+}
+
+#[test]
+fn a_panic_becomes_a_status_with_its_message() {
+    let status = ffi_guard!({
+        if true {
+            panic!("deliberate test panic");
+        }
+        Ok(())
+    });
+    assert_eq!(status, DEPO_ERR_PANIC);
+    assert!(last_error().contains("deliberate test panic"));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Random batches through the C entry point equal the `wall-model` crate's results bit for bit.
+    #[test]
+    fn random_batches_match_the_wall_model_crate(
+        rows in prop::collection::vec(
+            (prop::array::uniform3(-3.0f64..3.0), prop::array::uniform3(-1e4f64..1e4), 1e-6f64..1e-3),
+            0..200,
+        ),
+        vc in -0.5f64..1.0,
+        mu in 0.0f64..1.0,
+        q in prop_oneof![Just(1.0), Just(0.5), 0.3f64..3.0],
+    ) {
+        let params = DepoLawParams { vc, mu, q, ..li1997() };
+        let law = new_law(params);
+        let full: Vec<_> = rows.iter().map(|(v, w, r)| (*v, *w, *r, [0.0, 0.0, 1.0])).collect();
+        let mut a = Arrays::new(&full);
+        prop_assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(true, false), null_mut()) }, DEPO_OK);
+        let reference = WallLaw::new(LawParams { k1: 12.5, k2: 12.5, kappa1: 0.065, kappa2: 0.065, p: 1.0, q, vc, mu })
+            .unwrap()
+            .with_capture_mode(CaptureMode::Deposit);
+        let mut b = Arrays::new(&full);
+        let [vx, vy, vz] = &mut b.v;
+        let [wx, wy, wz] = &mut b.w;
+        let outcome: &mut [Outcome] = unsafe { std::slice::from_raw_parts_mut(b.outcome.as_mut_ptr().cast(), b.outcome.len()) };
+        let batch = Impacts::new([vx, vy, vz], Normals::Uniform([0.0, 0.0, 1.0]), outcome)
+            .unwrap()
+            .with_spin([wx, wy, wz], &b.radius)
+            .unwrap();
+        reference.apply(batch, None);
+        prop_assert_eq!(&a.outcome, &b.outcome);
+        for k in 0..3 {
+            prop_assert!(a.v[k].iter().zip(&b.v[k]).all(|(x, y)| x.to_bits() == y.to_bits()));
+            prop_assert!(a.w[k].iter().zip(&b.w[k]).all(|(x, y)| x.to_bits() == y.to_bits()));
+        }
+        unsafe { depo_law_free(law) };
+    }
+}
