@@ -227,7 +227,8 @@ int32_t depo_set_num_threads(size_t threads);
 /**
  * Applies `law` to every particle of `batch` in place, writing one outcome per particle, and
  * adds the batch's counts and energy to `*tally` unless it is NULL. A batch normal not of unit
- * length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`.
+ * length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`. An empty
+ * batch (`n == 0`) is `DEPO_OK` and reads no other field.
  */
 int32_t depo_apply_f64(const struct DepoWallLaw *law, struct DepoImpactsF64 *batch, struct DepoTally *tally);
 

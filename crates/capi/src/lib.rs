@@ -401,6 +401,11 @@ struct RawBatch<T> {
 unsafe fn apply_raw<T: Real>(law: *const DepoWallLaw, raw: RawBatch<T>, tally: *mut DepoTally) -> Result<(), Failure> {
     let law = &required(law, "law")?.law;
     let n = raw.n;
+    if n == 0 {
+        // Nothing to do, whatever the other fields hold (an empty std::vector's data() is NULL
+        // and a zeroed batch has a zero normal).
+        return Ok(());
+    }
     let [vx, vy, vz] = raw.v;
     let vx = slice_mut(vx, n, "vx")?;
     let vy = slice_mut(vy, n, "vy")?;
@@ -463,7 +468,8 @@ unsafe fn apply_raw<T: Real>(law: *const DepoWallLaw, raw: RawBatch<T>, tally: *
 
 /// Applies `law` to every particle of `batch` in place, writing one outcome per particle, and
 /// adds the batch's counts and energy to `*tally` unless it is NULL. A batch normal not of unit
-/// length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`.
+/// length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`. An empty
+/// batch (`n == 0`) is `DEPO_OK` and reads no other field.
 #[no_mangle]
 pub unsafe extern "C" fn depo_apply_f64(
     law: *const DepoWallLaw,

@@ -195,10 +195,11 @@ fn apply_checks_pointers_normal_and_overlap_and_changes_nothing_on_failure() {
         nx: null(),
         ny: null(),
         nz: null(),
-        normal: [0.0, 0.0, 1.0],
+        normal: [0.0, 0.0, 0.0],
         outcome: null_mut(),
     };
-    assert_eq!(unsafe { depo_apply_f64(law, &mut empty, &mut tally) }, DEPO_OK);
+    assert_eq!(unsafe { depo_apply_f64(law, &mut empty, &mut tally) }, DEPO_OK, "an empty batch is a no-op");
+    assert_eq!(tally, DepoTally::default());
     assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(false, false), null_mut()) }, DEPO_OK);
     assert_eq!(a.outcome, [DEPO_REBOUND; 4]);
     unsafe { depo_law_free(law) };

@@ -1,0 +1,247 @@
+!> depo: the Brach & Dunn (1998) wall law for Lagrangian particles, from Fortran.
+!>
+!> A thin layer over libdepo's C ABI (depo.h): interoperable types, bind(C) interfaces, and
+!> friendly wrappers with an optional ierr argument (absent: a failure stops the program with
+!> depo's message). Arrays pass by address, never copied: the solver's own arrays are updated
+!> in place. Free a law with depo_law_destroy; nothing relies on final procedures.
+module depo
+  use, intrinsic :: iso_c_binding
+  implicit none
+  private
+
+  public :: depo_law_t, depo_law_params, depo_tally
+  public :: DEPO_OK, DEPO_ERR_NULL, DEPO_ERR_INVALID, DEPO_ERR_PANIC
+  public :: DEPO_REBOUND, DEPO_CAPTURED, DEPO_SKIPPED, DEPO_INVALID
+  public :: depo_law_create, depo_law_from_preset, depo_law_destroy
+  public :: depo_apply, depo_coefficients, depo_set_num_threads
+  public :: depo_last_error_message, depo_version_string
+
+  !> Status codes (int32_t).
+  integer(c_int32_t), parameter :: DEPO_OK = 0, DEPO_ERR_NULL = 1, DEPO_ERR_INVALID = 2, DEPO_ERR_PANIC = 3
+  !> Outcome per particle (uint8_t in C, integer(c_int8_t) here).
+  integer(c_int8_t), parameter :: DEPO_REBOUND = 0_c_int8_t, DEPO_CAPTURED = 1_c_int8_t, &
+                                  DEPO_SKIPPED = 2_c_int8_t, DEPO_INVALID = 3_c_int8_t
+
+  !> The constants of the law, SI units (DepoLawParams).
+  type, bind(C) :: depo_law_params
+    real(c_double) :: k1, k2, kappa1, kappa2, p, q, vc, mu
+  end type depo_law_params
+
+  !> Outcome counts and energy lost per unit mass (J/kg); depo adds to it (DepoTally).
+  type, bind(C) :: depo_tally
+    integer(c_int64_t) :: rebound = 0, captured = 0, skipped = 0, invalid = 0
+    real(c_double) :: energy_material = 0, energy_adhesion = 0, energy_friction = 0, energy_deposition = 0
+  end type depo_tally
+
+  !> DepoImpactsF64: the batch as pointers into the caller's arrays.
+  type, bind(C) :: depo_impacts_f64
+    integer(c_size_t) :: n = 0
+    type(c_ptr) :: vx = c_null_ptr, vy = c_null_ptr, vz = c_null_ptr
+    type(c_ptr) :: wx = c_null_ptr, wy = c_null_ptr, wz = c_null_ptr
+    type(c_ptr) :: radius = c_null_ptr
+    type(c_ptr) :: nx = c_null_ptr, ny = c_null_ptr, nz = c_null_ptr
+    real(c_double) :: normal(3) = [0.0_c_double, 0.0_c_double, 1.0_c_double]
+    type(c_ptr) :: outcome = c_null_ptr
+  end type depo_impacts_f64
+
+  !> An opaque wall law.
+  type :: depo_law_t
+    private
+    type(c_ptr) :: ptr = c_null_ptr
+  end type depo_law_t
+
+  interface
+    function c_depo_law_new(params, out) bind(C, name="depo_law_new") result(status)
+      import :: depo_law_params, c_ptr, c_int32_t
+      type(depo_law_params), intent(in) :: params
+      type(c_ptr), intent(out) :: out
+      integer(c_int32_t) :: status
+    end function c_depo_law_new
+
+    function c_depo_law_preset(id, out) bind(C, name="depo_law_preset") result(status)
+      import :: c_char, c_ptr, c_int32_t
+      character(kind=c_char), intent(in) :: id(*)
+      type(c_ptr), intent(out) :: out
+      integer(c_int32_t) :: status
+    end function c_depo_law_preset
+
+    subroutine c_depo_law_free(law) bind(C, name="depo_law_free")
+      import :: c_ptr
+      type(c_ptr), value :: law
+    end subroutine c_depo_law_free
+
+    function c_depo_apply_f64(law, batch, tally) bind(C, name="depo_apply_f64") result(status)
+      import :: c_ptr, depo_impacts_f64, c_int32_t
+      type(c_ptr), value :: law
+      type(depo_impacts_f64), intent(inout) :: batch
+      type(c_ptr), value :: tally
+      integer(c_int32_t) :: status
+    end function c_depo_apply_f64
+
+    function c_depo_coefficients(law, n, vn, e, r, rho, captured) bind(C, name="depo_coefficients") result(status)
+      import :: c_ptr, c_size_t, c_int32_t
+      type(c_ptr), value :: law, vn, e, r, rho, captured
+      integer(c_size_t), value :: n
+      integer(c_int32_t) :: status
+    end function c_depo_coefficients
+
+    function c_depo_set_num_threads(threads) bind(C, name="depo_set_num_threads") result(status)
+      import :: c_size_t, c_int32_t
+      integer(c_size_t), value :: threads
+      integer(c_int32_t) :: status
+    end function c_depo_set_num_threads
+
+    function c_depo_last_error() bind(C, name="depo_last_error") result(message)
+      import :: c_ptr
+      type(c_ptr) :: message
+    end function c_depo_last_error
+
+    function c_depo_version() bind(C, name="depo_version") result(version)
+      import :: c_ptr
+      type(c_ptr) :: version
+    end function c_depo_version
+
+    function c_strlen(s) bind(C, name="strlen") result(length)
+      import :: c_ptr, c_size_t
+      type(c_ptr), value :: s
+      integer(c_size_t) :: length
+    end function c_strlen
+  end interface
+
+contains
+
+  !> A C string as a Fortran string.
+  function from_c_string(p) result(s)
+    type(c_ptr), intent(in) :: p
+    character(len=:), allocatable :: s
+    character(kind=c_char), pointer :: chars(:)
+    integer :: i, length
+    length = int(c_strlen(p))
+    call c_f_pointer(p, chars, [length])
+    allocate (character(len=length) :: s)
+    do i = 1, length
+      s(i:i) = chars(i)
+    end do
+  end function from_c_string
+
+  !> The message of the last failure on this thread.
+  function depo_last_error_message() result(message)
+    character(len=:), allocatable :: message
+    message = from_c_string(c_depo_last_error())
+  end function depo_last_error_message
+
+  !> The library version, "MAJOR.MINOR.PATCH".
+  function depo_version_string() result(version)
+    character(len=:), allocatable :: version
+    version = from_c_string(c_depo_version())
+  end function depo_version_string
+
+  !> Passes status to ierr, or stops with depo's message when ierr is absent.
+  subroutine handle(status, ierr)
+    integer(c_int32_t), intent(in) :: status
+    integer, intent(out), optional :: ierr
+    if (present(ierr)) then
+      ierr = int(status)
+    else if (status /= DEPO_OK) then
+      error stop "depo: "//depo_last_error_message()
+    end if
+  end subroutine handle
+
+  !> Makes a law from its constants.
+  subroutine depo_law_create(law, params, ierr)
+    type(depo_law_t), intent(out) :: law
+    type(depo_law_params), intent(in) :: params
+    integer, intent(out), optional :: ierr
+    call handle(c_depo_law_new(params, law%ptr), ierr)
+  end subroutine depo_law_create
+
+  !> Makes the law of a preset of the paper's Table 1, e.g. "li1997-sio2".
+  subroutine depo_law_from_preset(law, id, ierr)
+    type(depo_law_t), intent(out) :: law
+    character(len=*), intent(in) :: id
+    integer, intent(out), optional :: ierr
+    call handle(c_depo_law_preset(trim(id)//c_null_char, law%ptr), ierr)
+  end subroutine depo_law_from_preset
+
+  !> Frees a law; a law never made is fine.
+  subroutine depo_law_destroy(law)
+    type(depo_law_t), intent(inout) :: law
+    call c_depo_law_free(law%ptr)
+    law%ptr = c_null_ptr
+  end subroutine depo_law_destroy
+
+  !> Caps the threads depo uses for large batches (0: one per core).
+  subroutine depo_set_num_threads(threads, ierr)
+    integer, intent(in) :: threads
+    integer, intent(out), optional :: ierr
+    call handle(c_depo_set_num_threads(int(threads, c_size_t)), ierr)
+  end subroutine depo_set_num_threads
+
+  !> Applies the law in place to the particles (vx, vy, vz) hitting a wall, with one batch
+  !> normal or per-particle normals (nx, ny, nz), and optional spin (wx, wy, wz with radius).
+  !> outcome receives one DEPO_* code per particle; tally, when present, is added to.
+  subroutine depo_apply(law, vx, vy, vz, outcome, normal, nx, ny, nz, wx, wy, wz, radius, tally, ierr)
+    type(depo_law_t), intent(in) :: law
+    real(c_double), intent(inout), target, contiguous :: vx(:), vy(:), vz(:)
+    integer(c_int8_t), intent(inout), target, contiguous :: outcome(:)
+    real(c_double), intent(in), optional :: normal(3)
+    real(c_double), intent(in), target, contiguous, optional :: nx(:), ny(:), nz(:), radius(:)
+    real(c_double), intent(inout), target, contiguous, optional :: wx(:), wy(:), wz(:)
+    type(depo_tally), intent(inout), target, optional :: tally
+    integer, intent(out), optional :: ierr
+    type(depo_impacts_f64) :: batch
+    type(c_ptr) :: tally_ptr
+    integer :: n
+
+    n = size(vx)
+    if (size(vy) /= n .or. size(vz) /= n .or. size(outcome) /= n) then
+      if (present(ierr)) then
+        ierr = DEPO_ERR_INVALID
+        return
+      end if
+      error stop "depo_apply: vx, vy, vz and outcome must have the same size"
+    end if
+    batch%n = int(n, c_size_t)
+    if (n > 0) then
+      batch%vx = c_loc(vx)
+      batch%vy = c_loc(vy)
+      batch%vz = c_loc(vz)
+      batch%outcome = c_loc(outcome)
+      if (present(nx) .and. present(ny) .and. present(nz)) then
+        batch%nx = c_loc(nx)
+        batch%ny = c_loc(ny)
+        batch%nz = c_loc(nz)
+      end if
+      if (present(wx) .and. present(wy) .and. present(wz)) then
+        batch%wx = c_loc(wx)
+        batch%wy = c_loc(wy)
+        batch%wz = c_loc(wz)
+      end if
+      if (present(radius)) batch%radius = c_loc(radius)
+    end if
+    if (present(normal)) batch%normal = normal
+    tally_ptr = c_null_ptr
+    if (present(tally)) tally_ptr = c_loc(tally)
+    call handle(c_depo_apply_f64(law%ptr, batch, tally_ptr), ierr)
+  end subroutine depo_apply
+
+  !> The coefficients e, R, rho and capture (1 or 0) at normal velocities vn (m/s).
+  subroutine depo_coefficients(law, vn, e, r, rho, captured, ierr)
+    type(depo_law_t), intent(in) :: law
+    real(c_double), intent(in), target, contiguous :: vn(:)
+    real(c_double), intent(out), target, contiguous, optional :: e(:), r(:), rho(:)
+    integer(c_int8_t), intent(out), target, contiguous, optional :: captured(:)
+    integer, intent(out), optional :: ierr
+    type(c_ptr) :: pv, pe, pr, prho, pc
+    pv = c_null_ptr; pe = c_null_ptr; pr = c_null_ptr; prho = c_null_ptr; pc = c_null_ptr
+    if (size(vn) > 0) then
+      pv = c_loc(vn)
+      if (present(e)) pe = c_loc(e)
+      if (present(r)) pr = c_loc(r)
+      if (present(rho)) prho = c_loc(rho)
+      if (present(captured)) pc = c_loc(captured)
+    end if
+    call handle(c_depo_coefficients(law%ptr, int(size(vn), c_size_t), pv, pe, pr, prho, pc), ierr)
+  end subroutine depo_coefficients
+
+end module depo

@@ -1,0 +1,76 @@
+// depo.hpp: a header-only C++17 layer over depo.h. Owners free what they hold (RAII), a
+// failing call throws depo::Error with the library's message, and batches stay views of the
+// caller's arrays.
+#ifndef DEPO_HPP
+#define DEPO_HPP
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "depo.h"
+
+namespace depo {
+
+/// A failed depo call: the status code and depo_last_error()'s message.
+class Error : public std::runtime_error {
+  public:
+    Error(std::int32_t status, const char *message) : std::runtime_error(message), status_(status) {}
+    std::int32_t status() const noexcept { return status_; }
+
+  private:
+    std::int32_t status_;
+};
+
+/// Throws depo::Error unless status is DEPO_OK.
+inline void check(std::int32_t status) {
+    if (status != DEPO_OK) throw Error(status, depo_last_error());
+}
+
+/// The library's version, "MAJOR.MINOR.PATCH".
+inline std::string version() { return depo_version(); }
+
+/// Caps the threads depo uses for large batches (0: one per core).
+inline void set_num_threads(std::size_t threads) { check(depo_set_num_threads(threads)); }
+
+/// An owned wall law; move-only.
+class WallLaw {
+  public:
+    explicit WallLaw(const DepoLawParams &params) { check(depo_law_new(&params, &law_)); }
+    /// The law of a preset of the paper's Table 1, e.g. "li1997-sio2".
+    static WallLaw preset(const std::string &id) {
+        WallLaw law;
+        check(depo_law_preset(id.c_str(), &law.law_));
+        return law;
+    }
+    ~WallLaw() { depo_law_free(law_); }
+    WallLaw(WallLaw &&other) noexcept : law_(std::exchange(other.law_, nullptr)) {}
+    WallLaw &operator=(WallLaw &&other) noexcept {
+        if (this != &other) {
+            depo_law_free(law_);
+            law_ = std::exchange(other.law_, nullptr);
+        }
+        return *this;
+    }
+    WallLaw(const WallLaw &) = delete;
+    WallLaw &operator=(const WallLaw &) = delete;
+
+    DepoLawParams params() const {
+        DepoLawParams p{};
+        check(depo_law_params(law_, &p));
+        return p;
+    }
+    /// Applies the law to a batch in place; adds to *tally when given.
+    void apply(DepoImpactsF64 &batch, DepoTally *tally = nullptr) const { check(depo_apply_f64(law_, &batch, tally)); }
+    void apply(DepoImpactsF32 &batch, DepoTally *tally = nullptr) const { check(depo_apply_f32(law_, &batch, tally)); }
+    const DepoWallLaw *get() const noexcept { return law_; }
+
+  private:
+    WallLaw() = default;
+    DepoWallLaw *law_ = nullptr;
+};
+
+}  // namespace depo
+
+#endif  // DEPO_HPP
