@@ -1,6 +1,6 @@
 //! The host's deposition map: deposited count and mass per wall face.
 
-use crate::{set_last_error, slice, slice_mut, Failure, DEPO_CAPTURED, DEPO_ERR_PANIC, DEPO_OK};
+use super::{set_last_error, slice, slice_mut, Failure, DEPO_CAPTURED, DEPO_ERR_PANIC, DEPO_OK};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Adds the particles that a `depo_apply_*` call captured to a deposition map: for every `i`

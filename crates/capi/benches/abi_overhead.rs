@@ -1,0 +1,129 @@
+//! What the C ABI adds to the kernel: `depo_apply_f64` against `WallLaw::apply` on the same
+//! 1e6-impact batch (f64, tally on), timed interleaved, on the current thread pool.
+//!
+//! The C entry points are compiled into this bench from the crate's source (the library itself
+//! is built only as cdylib/staticlib) and called exactly as C calls them.
+//! `cargo bench -p depo-capi --bench abi_overhead`
+
+#[allow(dead_code, unused_imports)]
+#[path = "../src/lib.rs"]
+mod capi;
+
+use std::time::{Duration, Instant};
+
+use capi::{depo_apply_f64, depo_law_free, depo_law_preset, DepoImpactsF64, DepoTally, DepoWallLaw, DEPO_OK};
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use depo_wall_model::{Impacts, Normals, Outcome, Tally, WallLaw};
+
+const N: usize = 1_000_000;
+
+struct Data {
+    v: [Vec<f64>; 3],
+    outcome: Vec<u8>,
+}
+
+impl Data {
+    fn new() -> Self {
+        let col = |f: &dyn Fn(usize) -> f64| (0..N).map(f).collect::<Vec<f64>>();
+        Self {
+            v: [
+                col(&|i| ((i * 7919) % 1013) as f64 / 1013.0 - 0.5),
+                col(&|i| ((i * 104_729) % 997) as f64 / 997.0 - 0.5),
+                col(&|i| -0.01 - ((i * 31) % 1009) as f64 / 100.0),
+            ],
+            outcome: vec![0; N],
+        }
+    }
+}
+
+fn through_rust(law: &WallLaw, d: &mut Data, pristine: &Data) -> Duration {
+    for k in 0..3 {
+        d.v[k].copy_from_slice(&pristine.v[k]);
+    }
+    let [vx, vy, vz] = &mut d.v;
+    let outcome: &mut [Outcome] = bytemuck_cast(&mut d.outcome);
+    let start = Instant::now();
+    let batch = Impacts::new([vx, vy, vz], Normals::Uniform([0.0, 0.0, 1.0]), outcome).unwrap();
+    let mut tally = Tally::default();
+    law.apply(batch, Some(&mut tally));
+    let elapsed = start.elapsed();
+    std::hint::black_box(tally);
+    elapsed
+}
+
+fn through_c(law: *const DepoWallLaw, d: &mut Data, pristine: &Data) -> Duration {
+    for k in 0..3 {
+        d.v[k].copy_from_slice(&pristine.v[k]);
+    }
+    let [vx, vy, vz] = &mut d.v;
+    let start = Instant::now();
+    let mut batch = DepoImpactsF64 {
+        n: N,
+        vx: vx.as_mut_ptr(),
+        vy: vy.as_mut_ptr(),
+        vz: vz.as_mut_ptr(),
+        wx: std::ptr::null_mut(),
+        wy: std::ptr::null_mut(),
+        wz: std::ptr::null_mut(),
+        radius: std::ptr::null(),
+        nx: std::ptr::null(),
+        ny: std::ptr::null(),
+        nz: std::ptr::null(),
+        normal: [0.0, 0.0, 1.0],
+        outcome: d.outcome.as_mut_ptr(),
+    };
+    let mut tally = DepoTally::default();
+    let status = unsafe { depo_apply_f64(law, &mut batch, &mut tally) };
+    let elapsed = start.elapsed();
+    assert_eq!(status, DEPO_OK);
+    std::hint::black_box(tally);
+    elapsed
+}
+
+fn bytemuck_cast(bytes: &mut [u8]) -> &mut [Outcome] {
+    // SAFETY: Outcome is a transparent u8 newtype; every byte value is a valid Outcome.
+    unsafe { std::slice::from_raw_parts_mut(bytes.as_mut_ptr().cast(), bytes.len()) }
+}
+
+fn overhead(c: &mut Criterion) {
+    let law = WallLaw::preset("sim-70um").unwrap();
+    let mut c_law: *mut DepoWallLaw = std::ptr::null_mut();
+    assert_eq!(unsafe { depo_law_preset(c"sim-70um".as_ptr(), &mut c_law) }, DEPO_OK);
+    let pristine = Data::new();
+    let mut data = Data::new();
+    let (mut rust_total, mut c_total) = (Duration::ZERO, Duration::ZERO);
+
+    let mut group = c.benchmark_group("abi 1e6 f64 tally");
+    group.sample_size(20).throughput(Throughput::Elements(N as u64));
+    group.bench_function("rust WallLaw::apply", |b| {
+        b.iter_custom(|iters| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iters {
+                total += through_rust(&law, &mut data, &pristine);
+                c_total += through_c(c_law, &mut data, &pristine);
+            }
+            rust_total += total;
+            total
+        })
+    });
+    group.bench_function("C depo_apply_f64", |b| {
+        b.iter_custom(|iters| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iters {
+                rust_total += through_rust(&law, &mut data, &pristine);
+                total += through_c(c_law, &mut data, &pristine);
+            }
+            c_total += total;
+            total
+        })
+    });
+    group.finish();
+    println!(
+        "C ABI overhead on a 1e6-impact batch, interleaved: {:+.1} % of the Rust call's time",
+        100.0 * (c_total.as_secs_f64() / rust_total.as_secs_f64() - 1.0)
+    );
+    unsafe { depo_law_free(c_law) };
+}
+
+criterion_group!(benches, overhead);
+criterion_main!(benches);
