@@ -25,8 +25,9 @@ impl Outcome {
     pub const CAPTURED: Self = Self(1);
     /// Not an impact (`vn >= 0`): untouched.
     pub const SKIPPED: Self = Self(2);
-    /// Non-finite velocity or spin, radius `<= 0` or not finite, or a per-particle normal
-    /// that is not finite or not of unit length within 1e-4: untouched.
+    /// Non-finite velocity, spin or per-particle capture velocity, radius `<= 0` or not
+    /// finite, or a per-particle normal that is not finite or not of unit length within 1e-4:
+    /// untouched.
     pub const INVALID: Self = Self(3);
 
     /// A lower-case name for reports.
@@ -74,6 +75,8 @@ pub struct Impacts<'a, T> {
     pub(crate) velocity: [&'a mut [T]; 3],
     pub(crate) spin: Option<SpinArrays<'a, T>>,
     pub(crate) normals: Normals<'a, T>,
+    /// Per-particle capture velocity (m/s), replacing the law's `vc` (see [`crate::size`]).
+    pub(crate) capture_velocity: Option<&'a [T]>,
     pub(crate) outcome: &'a mut [Outcome],
 }
 
@@ -134,7 +137,7 @@ impl<'a, T: Real> Impacts<'a, T> {
                 check_len("nz", n, nz.len())?;
             }
         }
-        Ok(Self { velocity, spin: None, normals, outcome })
+        Ok(Self { velocity, spin: None, normals, capture_velocity: None, outcome })
     }
 
     /// Tracks spin too: `spin` in rad/s is updated in place, `radius` (m) is read.
@@ -145,6 +148,15 @@ impl<'a, T: Real> Impacts<'a, T> {
         check_len("wz", n, spin[2].len())?;
         check_len("radius", n, radius.len())?;
         self.spin = Some(SpinArrays { w: spin, radius });
+        Ok(self)
+    }
+
+    /// Gives each particle its own capture velocity `vc` (m/s), in place of the law's: a
+    /// polydisperse cloud, with `vc` from each particle's diameter ([`crate::SizeDependence`]).
+    /// A non-finite value flags that particle invalid.
+    pub fn with_capture_velocity(mut self, capture_velocity: &'a [T]) -> Result<Self, BatchError> {
+        check_len("capture_velocity", self.len(), capture_velocity.len())?;
+        self.capture_velocity = Some(capture_velocity);
         Ok(self)
     }
 
@@ -194,10 +206,17 @@ impl<'a, T: Real> Impacts<'a, T> {
                 (Normals::PerParticle([nx0, ny0, nz0]), Normals::PerParticle([nx1, ny1, nz1]))
             }
         };
+        let (vc0, vc1) = match self.capture_velocity {
+            None => (None, None),
+            Some(vc) => {
+                let (a, b) = vc.split_at(mid);
+                (Some(a), Some(b))
+            }
+        };
         let (o0, o1) = self.outcome.split_at_mut(mid);
         (
-            Self { velocity: [vx0, vy0, vz0], spin: spin0, normals: normals0, outcome: o0 },
-            Self { velocity: [vx1, vy1, vz1], spin: spin1, normals: normals1, outcome: o1 },
+            Self { velocity: [vx0, vy0, vz0], spin: spin0, normals: normals0, capture_velocity: vc0, outcome: o0 },
+            Self { velocity: [vx1, vy1, vz1], spin: spin1, normals: normals1, capture_velocity: vc1, outcome: o1 },
         )
     }
 }

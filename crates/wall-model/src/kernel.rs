@@ -1,8 +1,8 @@
 //! The batch kernel: one flat, branch-free loop per scene variant, chosen once per batch.
 //!
-//! A variant is the exponent pair (see [`crate::power::Exponents`]) and four switches fixed
-//! for the whole batch: spin tracked, friction (`mu > 0`), a normal per particle, tally
-//! wanted. Each combination is its own monomorphised loop, so a scene pays only for what it
+//! A variant is the exponent pair (see [`crate::power::Exponents`]) and five switches fixed
+//! for the whole batch: spin tracked, friction (`mu > 0`), a normal per particle, a capture
+//! velocity per particle, tally wanted. Each combination is its own monomorphised loop, so a scene pays only for what it
 //! uses, and each loop is compiled for AVX-512, AVX2+FMA and baseline x86-64, picked at run
 //! time (`multiversion`). The loop body calls [`crate::impact::resolve`], the same function the
 //! scalar API uses, so batch and scalar results agree bit for bit. No FMA contraction or
@@ -79,10 +79,12 @@ fn run_piece<T: Real>(setup: &Setup<T>, mut batch: Impacts<'_, T>, want_tally: b
     let spin = batch.spin.is_some();
     let friction = c.mu > T::ZERO;
     let per_particle_normal = matches!(batch.normals, Normals::PerParticle(_));
+    let per_particle_vc = batch.capture_velocity.is_some();
     with_powers!(setup.exponents, setup.power, (c.p, c.q), |p, q| {
         with_const_bools!(
-            sweep::<T, _, _, SPIN, FRICTION, PER_NORMAL, TALLY>(c, p, q, setup.capture, &mut batch);
-            spin => SPIN, friction => FRICTION, per_particle_normal => PER_NORMAL, want_tally => TALLY
+            sweep::<T, _, _, SPIN, FRICTION, PER_NORMAL, PER_VC, TALLY>(c, p, q, setup.capture, &mut batch);
+            spin => SPIN, friction => FRICTION, per_particle_normal => PER_NORMAL,
+            per_particle_vc => PER_VC, want_tally => TALLY
         )
     })
 }
@@ -104,6 +106,7 @@ fn sweep<
     const SPIN: bool,
     const FRICTION: bool,
     const PER_NORMAL: bool,
+    const PER_VC: bool,
     const TALLY: bool,
 >(
     c: &LawConstants<T>,
@@ -113,7 +116,7 @@ fn sweep<
     batch: &mut Impacts<'_, T>,
 ) -> Tally {
     let len = batch.len();
-    let Impacts { velocity, spin, normals, outcome } = batch;
+    let Impacts { velocity, spin, normals, capture_velocity, outcome } = batch;
     let [vx, vy, vz] = velocity;
     // Re-slicing to `len` lets the compiler drop every bounds check in the loop.
     let (vx, vy, vz) = (&mut vx[..len], &mut vy[..len], &mut vz[..len]);
@@ -128,13 +131,24 @@ fn sweep<
         Normals::Uniform(n) => (n, &[], &[], &[]),
         Normals::PerParticle([nx, ny, nz]) => ([T::ZERO; 3], &nx[..len], &ny[..len], &nz[..len]),
     };
+    let vcs: &[T] = match capture_velocity {
+        Some(vc) if PER_VC => &vc[..len],
+        _ => &[],
+    };
     let (unit_min, unit_max) = (T::from_f64(UNIT_SQUARED_MIN), T::from_f64(UNIT_SQUARED_MAX));
 
     let mut particle = |i: usize| -> (u8, EnergyLoss<T>) {
         let v = [vx[i], vy[i], vz[i]];
         let n = if PER_NORMAL { [nx[i], ny[i], nz[i]] } else { uniform };
         let (w, r) = if SPIN { ([wx[i], wy[i], wz[i]], radius[i]) } else { ([T::ZERO; 3], T::ONE) };
-        let res = resolve::<T, P, Q, SPIN, FRICTION>(c, p, q, mode, v, w, r, n);
+        let own;
+        let law = if PER_VC {
+            own = c.with_capture_velocity(vcs[i]);
+            &own
+        } else {
+            c
+        };
+        let res = resolve::<T, P, Q, SPIN, FRICTION>(law, p, q, mode, v, w, r, n);
 
         let mut valid = all_finite(v);
         if SPIN {
@@ -143,6 +157,9 @@ fn sweep<
         if PER_NORMAL {
             let nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
             valid &= (nn >= unit_min) & (nn <= unit_max);
+        }
+        if PER_VC {
+            valid &= vcs[i].is_finite();
         }
         let impact = res.normal_velocity < T::ZERO;
         let update = valid & impact;

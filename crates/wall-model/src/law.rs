@@ -58,12 +58,21 @@ impl<T: Real> LawConstants<T> {
             inv_k1: T::from_f64(1.0 / k1),
             kappa_ratio: T::from_f64((kappa2 / kappa1).powf(q)),
             inv_kappa1: T::from_f64(1.0 / kappa1),
-            vc: T::from_f64(vc),
-            capture_speed: T::from_f64(vc.max(0.0)),
+            vc: T::ZERO,
+            capture_speed: T::ZERO,
             mu: T::from_f64(mu),
             p: T::from_f64(p),
             q: T::from_f64(q),
         }
+        .with_capture_velocity(T::from_f64(vc))
+    }
+
+    /// The same constants with capture velocity `vc` (m/s): a particle's own, in a
+    /// polydisperse batch (see [`crate::size`]).
+    #[inline(always)]
+    #[must_use]
+    pub fn with_capture_velocity(self, vc: T) -> Self {
+        Self { vc, capture_speed: vc.max(T::ZERO), ..self }
     }
 }
 

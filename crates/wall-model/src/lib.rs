@@ -12,6 +12,8 @@
 //! - [`impact`]: the 3-D oblique impact (Eqs. 3-7): friction, sliding or rolling, spin, and what
 //!   happens to a captured particle ([`CaptureMode`]).
 //! - [`energy`]: where each impact's energy goes (Eqs. 1, 14).
+//! - [`size`]: the capture velocity against particle diameter (Fig. 8), for polydisperse
+//!   batches that carry one capture velocity per particle.
 //! - [`batch`]: structure-of-arrays batches borrowed from the host, per-particle
 //!   [`Outcome`]s and the [`Tally`]; [`kernel`] is the loop over a batch, one monomorphised,
 //!   vectorised variant per scene, run across cores with rayon.
@@ -46,6 +48,7 @@ pub mod params;
 pub mod power;
 pub mod presets;
 pub mod real;
+pub mod size;
 mod wall_law;
 
 pub use batch::{BatchError, Impacts, Normals, Outcome, Tally};
@@ -56,4 +59,5 @@ pub use params::{LawParams, ParamError};
 pub use power::{Exponents, PowerMode};
 pub use presets::{Preset, UnknownPreset, PRESETS};
 pub use real::Real;
+pub use size::SizeDependence;
 pub use wall_law::WallLaw;

@@ -203,3 +203,44 @@ fn results_are_identical_for_one_and_two_threads() {
     assert_eq!(one.4.particles(), n as u64);
     assert!(one.4.rebound > 0 && one.4.captured > 0);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// A batch with one capture velocity per particle equals, particle by particle, the scalar
+    /// impact under a law whose `vc` is that particle's.
+    #[test]
+    fn per_particle_capture_velocity_equals_a_law_with_that_vc(
+        law in law_strategy(),
+        rows in prop::collection::vec((contact_strategy(), -0.5f64..3.0), 1..40),
+    ) {
+        let n = rows.len();
+        let mut cols: [Vec<f64>; 3] = Default::default();
+        let mut normals: [Vec<f64>; 3] = Default::default();
+        let vcs: Vec<f64> = rows.iter().map(|r| r.1).collect();
+        for ((v, _, _, nrm), _) in &rows {
+            for k in 0..3 {
+                cols[k].push(v[k]);
+                normals[k].push(nrm[k]);
+            }
+        }
+        let mut outcome = vec![Outcome::default(); n];
+        let [vx, vy, vz] = &mut cols;
+        let batch = Impacts::new([vx, vy, vz], Normals::PerParticle([&normals[0], &normals[1], &normals[2]]), &mut outcome)
+            .unwrap()
+            .with_capture_velocity(&vcs)
+            .unwrap();
+        law.apply(batch, None);
+        for (i, ((v, _, _, nrm), vc)) in rows.iter().enumerate() {
+            let own = WallLaw::new(LawParams { vc: *vc, ..*law.params() })
+                .unwrap()
+                .with_capture_mode(law.capture_mode())
+                .with_power_mode(law.power_mode());
+            let res = own.impact(*v, None, *nrm);
+            prop_assert_eq!(outcome[i] == Outcome::CAPTURED, res.coefficients.captured);
+            for (col, expected) in cols.iter().zip(res.velocity) {
+                prop_assert_eq!(col[i].to_bits(), expected.to_bits());
+            }
+        }
+    }
+}

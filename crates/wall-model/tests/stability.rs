@@ -185,3 +185,26 @@ fn bad_particles_are_flagged_and_untouched_while_the_rest_is_processed() {
     assert!((soa.v[2][0] - law.overall_restitution(1.0)).abs() < 1e-15);
     assert_eq!(soa.v[2][0].to_bits(), soa.v[2][last].to_bits());
 }
+
+#[test]
+fn a_non_finite_per_particle_capture_velocity_flags_the_particle() {
+    let law = WallLaw::preset("sim-70um").unwrap();
+    let (mut vx, mut vy, mut vz) = (vec![0.0; 3], vec![0.0; 3], vec![-0.1; 3]);
+    let mut outcome = vec![Outcome::default(); 3];
+    let vcs = [0.2, f64::NAN, 0.01];
+    let batch = Impacts::new([&mut vx, &mut vy, &mut vz], Normals::Uniform([0.0, 0.0, 1.0]), &mut outcome)
+        .unwrap()
+        .with_capture_velocity(&vcs)
+        .unwrap();
+    law.apply(batch, None);
+    // 0.1 m/s is below a 0.2 m/s capture velocity and above 0.01 m/s.
+    assert_eq!(outcome, [Outcome::CAPTURED, Outcome::INVALID, Outcome::REBOUND]);
+    assert_eq!(vz[1], -0.1);
+    let short = [0.1; 2];
+    let mut outcome = vec![Outcome::default(); 3];
+    let err = Impacts::new([&mut vx, &mut vy, &mut vz], Normals::Uniform([0.0, 0.0, 1.0]), &mut outcome)
+        .unwrap()
+        .with_capture_velocity(&short)
+        .unwrap_err();
+    assert_eq!(err, depo_wall_model::BatchError::LengthMismatch { field: "capture_velocity", expected: 3, found: 2 });
+}
