@@ -14,12 +14,12 @@ int main(int argc, char **argv) {
     if (depo_law_new(&bad, &law) != DEPO_ERR_INVALID || law != NULL) return 1;
     printf("rejected: %s\n", depo_last_error());
 
-    /* 70 um steel on SiO2 (Table 1, sim-70um) with friction 0.3. */
+    /* Steel on SiO2 (Table 1, sim-70um: vc at 70 um) with friction 0.3; particles of 35 to 140 um. */
     DepoLawParams params = {12.5, 12.5, 0.065, 0.065, 1.0, 0.5, 0.074, 0.3};
     CHECK(depo_law_new(&params, &law));
 
     Box box;
-    box_init(&box, injected, 42);
+    box_init(&box, law, injected, 42);
     DepoTally tally;
     memset(&tally, 0, sizeof tally);
     size_t deposited = 0;

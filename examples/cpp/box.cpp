@@ -1,4 +1,5 @@
-// depo from C++: the box solver with std::vector arrays and the RAII layer of depo.hpp.
+// depo from C++: the box solver with std::vector arrays and the RAII layer of depo.hpp;
+// particles of 35 to 140 um, each with its own capture velocity.
 //   c++ -std=c++17 -I crates/capi/include examples/cpp/box.cpp -L target/release -ldepo -o box && ./box [N]
 #include <array>
 #include <cstdint>
@@ -12,6 +13,7 @@ namespace {
 
 struct Particles {
     std::array<std::vector<double>, 3> x, v;
+    std::vector<double> vc;  // capture velocity of each particle, from its diameter
     std::size_t size() const { return x[0].size(); }
 };
 
@@ -41,22 +43,28 @@ int main(int argc, char **argv) {
         p.x[a].resize(injected);
         p.v[a].resize(injected);
     }
+    std::vector<double> diameter(injected);
     for (std::size_t i = 0; i < injected; i++) {
         for (int a = 0; a < 3; a++) {
             p.x[a][i] = 0.05 + 0.9 * uniform(seed);
             p.v[a][i] = (uniform(seed) - 0.5) * 4.0 * uniform(seed);
         }
+        diameter[i] = 35e-6 + 105e-6 * uniform(seed);
     }
+    p.vc.resize(injected);
+    law.capture_velocities(70e-6, 1.51, injected, diameter.data(), p.vc.data());  // paper Fig. 8
 
     DepoTally tally{};
     std::size_t deposited = 0;
     std::array<std::vector<double>, 3> hv, hn;
+    std::vector<double> hvc;
     std::vector<std::size_t> index;
     std::vector<std::uint8_t> outcome;
     const double dt = 1e-3, gravity = -9.81;
     for (int step = 0; step < 2000; step++) {
         for (auto &c : hv) c.clear();
         for (auto &c : hn) c.clear();
+        hvc.clear();
         index.clear();
         for (std::size_t i = 0; i < p.size(); i++) {
             p.v[2][i] += gravity * dt;
@@ -79,6 +87,7 @@ int main(int argc, char **argv) {
                     hv[a].push_back(p.v[a][i]);
                     hn[a].push_back(a == wall ? sign : 0.0);
                 }
+                hvc.push_back(p.vc[i]);
             }
         }
         outcome.resize(index.size());
@@ -91,7 +100,7 @@ int main(int argc, char **argv) {
         batch.ny = hn[1].data();
         batch.nz = hn[2].data();
         batch.outcome = outcome.data();
-        law.apply(batch, &tally);
+        law.apply(batch, hvc.data(), &tally);
 
         std::vector<bool> gone(p.size(), false);
         for (std::size_t k = 0; k < index.size(); k++) {
@@ -109,12 +118,14 @@ int main(int argc, char **argv) {
                 p.x[a][kept] = p.x[a][i];
                 p.v[a][kept] = p.v[a][i];
             }
+            p.vc[kept] = p.vc[i];
             kept++;
         }
         for (int a = 0; a < 3; a++) {
             p.x[a].resize(kept);
             p.v[a].resize(kept);
         }
+        p.vc.resize(kept);
     }
     std::printf("injected %zu airborne %zu deposited %zu\n", injected, p.size(), deposited);
     std::printf("tally rebound %llu captured %llu skipped %llu invalid %llu\n",

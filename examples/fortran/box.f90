@@ -1,5 +1,6 @@
-!> depo from Fortran: particles in a box under gravity; each step's wall hits go to depo as
-!> one batch on the solver's own arrays; captured particles are removed.
+!> depo from Fortran: particles of 35 to 140 um in a box under gravity, each with its own
+!> capture velocity; each step's wall hits go to depo as one batch on the solver's own arrays;
+!> captured particles are removed.
 !>   gfortran crates/capi/fortran/depo.f90 examples/fortran/box.f90 -L target/release -ldepo -o box
 program box
   use, intrinsic :: iso_c_binding, only: c_double, c_int8_t, c_int64_t
@@ -7,7 +8,7 @@ program box
   implicit none
   integer, parameter :: dp = c_double
   integer :: injected, airborne, deposited, hits, i, k, a, step, wall, kept, ierr
-  real(dp), allocatable :: x(:, :), v(:, :), hv(:, :), hn(:, :)
+  real(dp), allocatable :: x(:, :), v(:, :), hv(:, :), hn(:, :), diameter(:), vc(:), hvc(:)
   integer, allocatable :: idx(:)
   integer(c_int8_t), allocatable :: outcome(:)
   logical, allocatable :: gone(:)
@@ -34,14 +35,17 @@ program box
   print '(a, f8.5, a, f8.5)', 'e(1 m/s) = ', e(1), '  e(0.05 m/s) = ', e(2)
 
   allocate (x(injected, 3), v(injected, 3), hv(injected, 3), hn(injected, 3), idx(injected), outcome(injected))
-  allocate (gone(injected))
+  allocate (gone(injected), diameter(injected), vc(injected), hvc(injected))
   seed = 12345
   do i = 1, injected
     do a = 1, 3
       x(i, a) = 0.05_dp + 0.9_dp*uniform(seed)
       v(i, a) = (uniform(seed) - 0.5_dp)*4.0_dp*uniform(seed)
     end do
+    diameter(i) = 35.0e-6_dp + 105.0e-6_dp*uniform(seed)
   end do
+  ! The law's vc holds at 70 um; vc ~ d**(-1.51) across sizes (paper Fig. 8).
+  call depo_capture_velocities(law, 70.0e-6_dp, 1.51_dp, diameter, vc)
 
   airborne = injected
   deposited = 0
@@ -68,11 +72,13 @@ program box
         hv(hits, :) = v(i, :)
         hn(hits, :) = 0.0_dp
         hn(hits, wall) = sign
+        hvc(hits) = vc(i)
       end if
     end do
     ! The batch: columns of the solver's hit arrays, passed by address.
     call depo_apply(law, hv(1:hits, 1), hv(1:hits, 2), hv(1:hits, 3), outcome(1:hits), &
-                    nx=hn(1:hits, 1), ny=hn(1:hits, 2), nz=hn(1:hits, 3), tally=tally)
+                    nx=hn(1:hits, 1), ny=hn(1:hits, 2), nz=hn(1:hits, 3), &
+                    capture_velocity=hvc(1:hits), tally=tally)
     gone(1:airborne) = .false.
     do k = 1, hits
       if (outcome(k) == DEPO_CAPTURED) then
@@ -88,6 +94,7 @@ program box
       kept = kept + 1
       x(kept, :) = x(i, :)
       v(kept, :) = v(i, :)
+      vc(kept) = vc(i)
     end do
     airborne = kept
   end do

@@ -19,7 +19,7 @@ int main(int argc, char **argv) {
     CHECK(depo_law_preset("sim-70um", &law));
 
     Box box;
-    box_init(&box, injected, 1000 + (uint64_t)rank); /* each rank its own particles */
+    box_init(&box, law, injected, 1000 + (uint64_t)rank); /* each rank its own particles */
     DepoTally tally;
     memset(&tally, 0, sizeof tally);
     unsigned long long local[6] = {0}, total[6] = {0};

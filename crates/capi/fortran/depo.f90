@@ -13,7 +13,7 @@ module depo
   public :: DEPO_OK, DEPO_ERR_NULL, DEPO_ERR_INVALID, DEPO_ERR_PANIC
   public :: DEPO_REBOUND, DEPO_CAPTURED, DEPO_SKIPPED, DEPO_INVALID
   public :: depo_law_create, depo_law_from_preset, depo_law_destroy
-  public :: depo_apply, depo_coefficients, depo_set_num_threads
+  public :: depo_apply, depo_coefficients, depo_capture_velocities, depo_set_num_threads
   public :: depo_last_error_message, depo_version_string
 
   !> Status codes (int32_t).
@@ -77,6 +77,23 @@ module depo
       type(c_ptr), value :: tally
       integer(c_int32_t) :: status
     end function c_depo_apply_f64
+
+    function c_depo_apply_sized_f64(law, batch, vc, tally) bind(C, name="depo_apply_sized_f64") result(status)
+      import :: c_ptr, depo_impacts_f64, c_int32_t
+      type(c_ptr), value :: law
+      type(depo_impacts_f64), intent(inout) :: batch
+      type(c_ptr), value :: vc, tally
+      integer(c_int32_t) :: status
+    end function c_depo_apply_sized_f64
+
+    function c_depo_capture_velocities(law, reference_diameter, exponent, n, diameter, vc) &
+      bind(C, name="depo_capture_velocities") result(status)
+      import :: c_ptr, c_double, c_size_t, c_int32_t
+      type(c_ptr), value :: law, diameter, vc
+      real(c_double), value :: reference_diameter, exponent
+      integer(c_size_t), value :: n
+      integer(c_int32_t) :: status
+    end function c_depo_capture_velocities
 
     function c_depo_coefficients(law, n, vn, e, r, rho, captured) bind(C, name="depo_coefficients") result(status)
       import :: c_ptr, c_size_t, c_int32_t
@@ -178,19 +195,21 @@ contains
   end subroutine depo_set_num_threads
 
   !> Applies the law in place to the particles (vx, vy, vz) hitting a wall, with one batch
-  !> normal or per-particle normals (nx, ny, nz), and optional spin (wx, wy, wz with radius).
+  !> normal or per-particle normals (nx, ny, nz), optional spin (wx, wy, wz with radius) and
+  !> optional per-particle capture velocities (polydisperse batches, see depo_capture_velocities).
   !> outcome receives one DEPO_* code per particle; tally, when present, is added to.
-  subroutine depo_apply(law, vx, vy, vz, outcome, normal, nx, ny, nz, wx, wy, wz, radius, tally, ierr)
+  subroutine depo_apply(law, vx, vy, vz, outcome, normal, nx, ny, nz, wx, wy, wz, radius, capture_velocity, tally, ierr)
     type(depo_law_t), intent(in) :: law
     real(c_double), intent(inout), target, contiguous :: vx(:), vy(:), vz(:)
     integer(c_int8_t), intent(inout), target, contiguous :: outcome(:)
     real(c_double), intent(in), optional :: normal(3)
     real(c_double), intent(in), target, contiguous, optional :: nx(:), ny(:), nz(:), radius(:)
     real(c_double), intent(inout), target, contiguous, optional :: wx(:), wy(:), wz(:)
+    real(c_double), intent(in), target, contiguous, optional :: capture_velocity(:)
     type(depo_tally), intent(inout), target, optional :: tally
     integer, intent(out), optional :: ierr
     type(depo_impacts_f64) :: batch
-    type(c_ptr) :: tally_ptr
+    type(c_ptr) :: tally_ptr, vc_ptr
     integer :: n
 
     n = size(vx)
@@ -222,8 +241,47 @@ contains
     if (present(normal)) batch%normal = normal
     tally_ptr = c_null_ptr
     if (present(tally)) tally_ptr = c_loc(tally)
-    call handle(c_depo_apply_f64(law%ptr, batch, tally_ptr), ierr)
+    if (present(capture_velocity)) then
+      if (size(capture_velocity) /= n) then
+        if (present(ierr)) then
+          ierr = DEPO_ERR_INVALID
+          return
+        end if
+        error stop "depo_apply: capture_velocity must have the size of vx"
+      end if
+      vc_ptr = c_null_ptr
+      if (n > 0) vc_ptr = c_loc(capture_velocity)
+      call handle(c_depo_apply_sized_f64(law%ptr, batch, vc_ptr, tally_ptr), ierr)
+    else
+      call handle(c_depo_apply_f64(law%ptr, batch, tally_ptr), ierr)
+    end if
   end subroutine depo_apply
+
+  !> Capture velocities (m/s) from diameters (m), paper Fig. 8:
+  !> vc = vc_law (diameter / reference_diameter)**(-exponent); 1.51 in the paper, 5/6 for JKR.
+  subroutine depo_capture_velocities(law, reference_diameter, exponent, diameter, capture_velocity, ierr)
+    type(depo_law_t), intent(in) :: law
+    real(c_double), intent(in) :: reference_diameter, exponent
+    real(c_double), intent(in), target, contiguous :: diameter(:)
+    real(c_double), intent(out), target, contiguous :: capture_velocity(:)
+    integer, intent(out), optional :: ierr
+    type(c_ptr) :: pd, pv
+    if (size(capture_velocity) /= size(diameter)) then
+      if (present(ierr)) then
+        ierr = DEPO_ERR_INVALID
+        return
+      end if
+      error stop "depo_capture_velocities: capture_velocity must have the size of diameter"
+    end if
+    pd = c_null_ptr
+    pv = c_null_ptr
+    if (size(diameter) > 0) then
+      pd = c_loc(diameter)
+      pv = c_loc(capture_velocity)
+    end if
+    call handle(c_depo_capture_velocities(law%ptr, reference_diameter, exponent, int(size(diameter), c_size_t), pd, pv), &
+                ierr)
+  end subroutine depo_capture_velocities
 
   !> The coefficients e, R, rho and capture (1 or 0) at normal velocities vn (m/s).
   subroutine depo_coefficients(law, vn, e, r, rho, captured, ierr)

@@ -64,6 +64,18 @@ class WallLaw {
     /// Applies the law to a batch in place; adds to *tally when given.
     void apply(DepoImpactsF64 &batch, DepoTally *tally = nullptr) const { check(depo_apply_f64(law_, &batch, tally)); }
     void apply(DepoImpactsF32 &batch, DepoTally *tally = nullptr) const { check(depo_apply_f32(law_, &batch, tally)); }
+    /// Applies the law with one capture velocity per particle (a polydisperse batch).
+    void apply(DepoImpactsF64 &batch, const double *capture_velocity, DepoTally *tally = nullptr) const {
+        check(depo_apply_sized_f64(law_, &batch, capture_velocity, tally));
+    }
+    void apply(DepoImpactsF32 &batch, const float *capture_velocity, DepoTally *tally = nullptr) const {
+        check(depo_apply_sized_f32(law_, &batch, capture_velocity, tally));
+    }
+    /// Capture velocities (m/s) from diameters (m): vc (d / reference_diameter)^-exponent.
+    void capture_velocities(double reference_diameter, double exponent, std::size_t n, const double *diameter,
+                            double *capture_velocity) const {
+        check(depo_capture_velocities(law_, reference_diameter, exponent, n, diameter, capture_velocity));
+    }
     const DepoWallLaw *get() const noexcept { return law_; }
 
   private:

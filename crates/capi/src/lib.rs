@@ -24,7 +24,7 @@ use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, RwLock};
 
-use depo_wall_model::{Impacts, LawParams, Normals, Outcome, Real, Tally, WallLaw};
+use depo_wall_model::{Impacts, LawParams, Normals, Outcome, Real, SizeDependence, Tally, WallLaw};
 
 /// Success.
 pub const DEPO_OK: i32 = 0;
@@ -397,8 +397,35 @@ struct RawBatch<T> {
     outcome: *mut u8,
 }
 
-/// Checks a raw batch and applies the law to it; the tally is added to only on success.
-unsafe fn apply_raw<T: Real>(law: *const DepoWallLaw, raw: RawBatch<T>, tally: *mut DepoTally) -> Result<(), Failure> {
+macro_rules! raw_batch_from {
+    ($name:ident, $c_type:ty, $t:ty) => {
+        impl RawBatch<$t> {
+            unsafe fn $name(batch: *mut $c_type) -> Result<Self, Failure> {
+                let b = required(batch.cast_const(), "batch")?;
+                Ok(Self {
+                    n: b.n,
+                    v: [b.vx, b.vy, b.vz],
+                    w: [b.wx, b.wy, b.wz],
+                    radius: b.radius,
+                    normals: [b.nx, b.ny, b.nz],
+                    normal: b.normal,
+                    outcome: b.outcome,
+                })
+            }
+        }
+    };
+}
+raw_batch_from!(from_f64, DepoImpactsF64, f64);
+raw_batch_from!(from_f32, DepoImpactsF32, f32);
+
+/// Checks a raw batch and applies the law to it, with per-particle capture velocities when
+/// `capture_velocity` is given; the tally is added to only on success.
+unsafe fn apply_raw<T: Real>(
+    law: *const DepoWallLaw,
+    raw: RawBatch<T>,
+    capture_velocity: Option<*const T>,
+    tally: *mut DepoTally,
+) -> Result<(), Failure> {
     let law = &required(law, "law")?.law;
     let n = raw.n;
     if n == 0 {
@@ -422,6 +449,10 @@ unsafe fn apply_raw<T: Real>(law: *const DepoWallLaw, raw: RawBatch<T>, tally: *
         )),
         _ => return Err(Failure::null("one of wx, wy, wz (give all three or none)")),
     };
+    let vc = match capture_velocity {
+        Some(ptr) => Some(slice(ptr, n, "capture_velocity")?),
+        None => None,
+    };
     let normals_given = raw.normals.map(|p| !p.is_null());
     let per_particle = match normals_given {
         [false, false, false] => None,
@@ -438,6 +469,9 @@ unsafe fn apply_raw<T: Real>(law: *const DepoWallLaw, raw: RawBatch<T>, tally: *
     if let Some([nx, ny, nz]) = &per_particle {
         arrays.extend([("nx", span(nx)), ("ny", span(ny)), ("nz", span(nz))]);
     }
+    if let Some(vc) = vc {
+        arrays.push(("capture_velocity", span(vc)));
+    }
     check_disjoint(&arrays)?;
 
     let normals = match per_particle {
@@ -447,6 +481,9 @@ unsafe fn apply_raw<T: Real>(law: *const DepoWallLaw, raw: RawBatch<T>, tally: *
     let mut batch = Impacts::new([vx, vy, vz], normals, outcome).map_err(|e| Failure::invalid(e.to_string()))?;
     if let Some((wx, wy, wz, radius)) = spin {
         batch = batch.with_spin([wx, wy, wz], radius).map_err(|e| Failure::invalid(e.to_string()))?;
+    }
+    if let Some(vc) = vc {
+        batch = batch.with_capture_velocity(vc).map_err(|e| Failure::invalid(e.to_string()))?;
     }
     if tally.is_null() {
         on_pool(|| law.apply(batch, None));
@@ -476,19 +513,7 @@ pub unsafe extern "C" fn depo_apply_f64(
     batch: *mut DepoImpactsF64,
     tally: *mut DepoTally,
 ) -> i32 {
-    ffi_guard!({
-        let b = required(batch.cast_const(), "batch")?;
-        let raw = RawBatch {
-            n: b.n,
-            v: [b.vx, b.vy, b.vz],
-            w: [b.wx, b.wy, b.wz],
-            radius: b.radius,
-            normals: [b.nx, b.ny, b.nz],
-            normal: b.normal,
-            outcome: b.outcome,
-        };
-        apply_raw(law, raw, tally)
-    })
+    ffi_guard!({ apply_raw(law, RawBatch::from_f64(batch)?, None, tally) })
 }
 
 /// `depo_apply_f64` in single precision (results within 1e-4 of the incoming speed of the
@@ -499,18 +524,62 @@ pub unsafe extern "C" fn depo_apply_f32(
     batch: *mut DepoImpactsF32,
     tally: *mut DepoTally,
 ) -> i32 {
+    ffi_guard!({ apply_raw(law, RawBatch::from_f32(batch)?, None, tally) })
+}
+
+/// `depo_apply_f64` for a polydisperse batch: particle `i` is captured against its own capture
+/// velocity `capture_velocity[i]` (m/s; from its diameter by `depo_capture_velocities`) instead
+/// of the law's `vc`. `capture_velocity` is required when `n > 0`; a non-finite value flags
+/// that particle `DEPO_INVALID`.
+#[no_mangle]
+pub unsafe extern "C" fn depo_apply_sized_f64(
+    law: *const DepoWallLaw,
+    batch: *mut DepoImpactsF64,
+    capture_velocity: *const f64,
+    tally: *mut DepoTally,
+) -> i32 {
+    ffi_guard!({ apply_raw(law, RawBatch::from_f64(batch)?, Some(capture_velocity), tally) })
+}
+
+/// `depo_apply_sized_f64` in single precision.
+#[no_mangle]
+pub unsafe extern "C" fn depo_apply_sized_f32(
+    law: *const DepoWallLaw,
+    batch: *mut DepoImpactsF32,
+    capture_velocity: *const f32,
+    tally: *mut DepoTally,
+) -> i32 {
+    ffi_guard!({ apply_raw(law, RawBatch::from_f32(batch)?, Some(capture_velocity), tally) })
+}
+
+/// Each particle's capture velocity from its diameter (paper Fig. 8):
+/// `vc[i] = vc_law (diameter[i] / reference_diameter)^(-exponent)`, with `vc_law` the law's
+/// capture velocity at `reference_diameter` (m). The paper's simulation rows give
+/// `exponent = 1.51`, the JKR theory `5/6`. Only `vc` scales; `k` and `kappa` keep the law's
+/// values. A reference diameter that is not finite and positive, a non-finite exponent or a
+/// diameter that is not finite and positive is `DEPO_ERR_INVALID` and writes nothing.
+#[no_mangle]
+pub unsafe extern "C" fn depo_capture_velocities(
+    law: *const DepoWallLaw,
+    reference_diameter: f64,
+    exponent: f64,
+    n: usize,
+    diameter: *const f64,
+    capture_velocity: *mut f64,
+) -> i32 {
     ffi_guard!({
-        let b = required(batch.cast_const(), "batch")?;
-        let raw = RawBatch {
-            n: b.n,
-            v: [b.vx, b.vy, b.vz],
-            w: [b.wx, b.wy, b.wz],
-            radius: b.radius,
-            normals: [b.nx, b.ny, b.nz],
-            normal: b.normal,
-            outcome: b.outcome,
-        };
-        apply_raw(law, raw, tally)
+        let law = &required(law, "law")?.law;
+        let size = SizeDependence::new(reference_diameter, exponent).map_err(|e| Failure::invalid(e.to_string()))?;
+        let diameter = slice(diameter, n, "diameter")?;
+        if let Some(i) = diameter.iter().position(|d| !(d.is_finite() && *d > 0.0)) {
+            return Err(Failure::invalid(format!("diameter[{i}] = {} is not finite and positive", diameter[i])));
+        }
+        let out = slice_mut(capture_velocity, n, "capture_velocity")?;
+        let vc_law = law.params().vc;
+        for (vc, &d) in out.iter_mut().zip(diameter) {
+            *vc = size.capture_velocity(vc_law, d);
+        }
+        Ok(())
     })
 }
 

@@ -360,6 +360,86 @@ fn deposition_map_counts_captured_particles_per_face() {
 }
 
 #[test]
+fn capture_velocities_from_diameters() {
+    let mut law = null_mut();
+    assert_eq!(unsafe { depo_law_preset(c"sim-70um".as_ptr(), &mut law) }, DEPO_OK);
+    let d = [35e-6, 70e-6, 140e-6];
+    let mut vc = [0.0; 3];
+    assert_eq!(unsafe { depo_capture_velocities(law, 70e-6, 1.51, 3, d.as_ptr(), vc.as_mut_ptr()) }, DEPO_OK);
+    // 0.074 * 2^1.51 = 0.21076, 0.074, 0.074 * 2^-1.51 = 0.025982 (Table 1: 0.212, 0.074, 0.026).
+    assert!((vc[0] - 0.074 * 2f64.powf(1.51)).abs() < 1e-15 && (vc[0] - 0.2108).abs() < 1e-4);
+    assert_eq!(vc[1], 0.074);
+    assert!((vc[2] - 0.025_98).abs() < 1e-5);
+    let bad = [35e-6, -1.0, 1e-5];
+    let mut out = [9.0; 3];
+    assert_eq!(
+        unsafe { depo_capture_velocities(law, 70e-6, 1.51, 3, bad.as_ptr(), out.as_mut_ptr()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(out, [9.0; 3]);
+    assert!(last_error().contains("diameter[1]"));
+    assert_eq!(unsafe { depo_capture_velocities(law, 0.0, 1.51, 3, d.as_ptr(), out.as_mut_ptr()) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("reference_diameter"));
+    assert_eq!(
+        unsafe { depo_capture_velocities(law, 70e-6, f64::NAN, 3, d.as_ptr(), out.as_mut_ptr()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(unsafe { depo_capture_velocities(law, 70e-6, 1.51, 3, d.as_ptr(), null_mut()) }, DEPO_ERR_NULL);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn sized_apply_uses_each_particle_s_capture_velocity() {
+    let law = new_law(li1997());
+    // All at 0.1 m/s normal speed: captured where the particle's vc is above 0.1 m/s.
+    let rows = [([0.05, 0.0, -0.1], [0.0; 3], 1e-5, [0.0, 0.0, 1.0]); 4];
+    let vc = [0.2, 0.05, f64::NAN, -1.0];
+    let mut a = Arrays::new(&rows);
+    let mut tally = DepoTally::default();
+    assert_eq!(unsafe { depo_apply_sized_f64(law, &mut a.batch(false, false), vc.as_ptr(), &mut tally) }, DEPO_OK);
+    assert_eq!(a.outcome, [DEPO_CAPTURED, DEPO_REBOUND, DEPO_INVALID, DEPO_REBOUND]);
+    // Each rebound equals the law with that particle's vc.
+    for i in [1, 3] {
+        let own = WallLaw::new(LawParams {
+            vc: vc[i],
+            ..WallLaw::preset("li1997-sio2").unwrap().params().with_friction(0.3)
+        })
+        .unwrap();
+        let res = own.impact(glam::DVec3::from_array(rows[i].0), None, glam::DVec3::Z);
+        assert_eq!([a.v[0][i], a.v[1][i], a.v[2][i]], res.velocity);
+    }
+    let mut b = Arrays::new(&rows);
+    assert_eq!(unsafe { depo_apply_sized_f64(law, &mut b.batch(false, false), null(), &mut tally) }, DEPO_ERR_NULL);
+    assert!(last_error().contains("capture_velocity"));
+    let mut batch = b.batch(false, false);
+    let overlapping = batch.vx.cast_const();
+    assert_eq!(unsafe { depo_apply_sized_f64(law, &mut batch, overlapping, null_mut()) }, DEPO_ERR_INVALID);
+    assert_eq!(b.outcome, [255; 4]);
+    // Single precision too.
+    let (mut vx, mut vy, mut vz) = ([0.05f32; 2], [0.0f32; 2], [-0.1f32; 2]);
+    let vc32 = [0.2f32, 0.05];
+    let mut out = [9u8; 2];
+    let mut b32 = DepoImpactsF32 {
+        n: 2,
+        vx: vx.as_mut_ptr(),
+        vy: vy.as_mut_ptr(),
+        vz: vz.as_mut_ptr(),
+        wx: null_mut(),
+        wy: null_mut(),
+        wz: null_mut(),
+        radius: null(),
+        nx: null(),
+        ny: null(),
+        nz: null(),
+        normal: [0.0, 0.0, 1.0],
+        outcome: out.as_mut_ptr(),
+    };
+    assert_eq!(unsafe { depo_apply_sized_f32(law, &mut b32, vc32.as_ptr(), null_mut()) }, DEPO_OK);
+    assert_eq!(out, [DEPO_CAPTURED, DEPO_REBOUND]);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
 fn a_panic_becomes_a_status_with_its_message() {
     let status = ffi_guard!({
         if true {
