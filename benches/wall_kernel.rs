@@ -36,7 +36,7 @@ fn bench_scenario<T: Real>(c: &mut Criterion, pool: &rayon::ThreadPool, template
                     work.restore(&pristine);
                     copy_time += timed(pool, || work.copy_kernel());
                     work.restore(&pristine);
-                    let t = timed(pool, || work.law_kernel(&law));
+                    let t = timed(pool, || work.law_kernel(&law, scenario.tally));
                     law_time += t;
                     total += t;
                 }

@@ -11,7 +11,7 @@
 
 use std::time::{Duration, Instant};
 
-use depo_wall_model::{Impacts, LawParams, Normals, Outcome, PowerMode, Real, WallLaw};
+use depo_wall_model::{Impacts, LawParams, Normals, Outcome, PowerMode, Real, Tally, WallLaw};
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
 use rayon::prelude::*;
@@ -34,6 +34,8 @@ pub struct Scenario {
     pub exponents: (f64, f64),
     pub power: PowerMode,
     pub spin: bool,
+    /// Whether a tally (counts and energy) is kept.
+    pub tally: bool,
     /// Number of impacts per call.
     pub n: usize,
 }
@@ -58,7 +60,7 @@ impl Scenario {
             exp(self.exponents.1),
             power,
             if self.spin { " spin" } else { "" }
-        )
+        ) + if self.tally { " tally" } else { "" }
     }
 
     /// The law used: the li1997-sio2 constants with friction 0.3 and the scenario's exponents.
@@ -154,8 +156,8 @@ impl<T: Real> Workload<T> {
         }
     }
 
-    /// Applies `law` to the whole workload.
-    pub fn law_kernel(&mut self, law: &WallLaw) {
+    /// Applies `law` to the whole workload, with a tally when `tally`.
+    pub fn law_kernel(&mut self, law: &WallLaw, tally: bool) {
         let [vx, vy, vz] = &mut self.v;
         let batch = Impacts::new([vx, vy, vz], Normals::Uniform([T::ZERO, T::ZERO, T::ONE]), &mut self.outcome)
             .expect("consistent arrays");
@@ -165,7 +167,9 @@ impl<T: Real> Workload<T> {
             let [wx, wy, wz] = &mut self.w;
             batch.with_spin([wx, wy, wz], &self.radius).expect("consistent arrays")
         };
-        law.apply(batch, None);
+        let mut sums = Tally::default();
+        law.apply(batch, tally.then_some(&mut sums));
+        std::hint::black_box(sums);
     }
 
     /// Reads and writes the same arrays as the law kernel, in the same pieces, with trivial
@@ -235,7 +239,7 @@ fn measure_typed<T: Real>(scenario: Scenario, pool: &ThreadPool, reps: usize) ->
         state.restore(&pristine);
         let c = timed(pool, || state.copy_kernel());
         state.restore(&pristine);
-        let k = timed(pool, || state.law_kernel(&law));
+        let k = timed(pool, || state.law_kernel(&law, scenario.tally));
         if rep > 0 {
             // The first round warms caches and page tables.
             kernel.push(k);
@@ -267,9 +271,12 @@ pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
                 ((1.3, 0.7), PowerMode::Fast),
                 ((1.3, 0.7), PowerMode::Exact),
             ] {
-                out.push(Scenario { precision, exponents, power, spin, n });
+                out.push(Scenario { precision, exponents, power, spin, tally: false, n });
             }
         }
+    }
+    for precision in [Precision::F64, Precision::F32] {
+        out.push(Scenario { precision, exponents: (1.0, 0.5), power: PowerMode::Fast, spin: false, tally: true, n });
     }
     out
 }
@@ -282,17 +289,17 @@ pub fn error_against_reference(scenario: Scenario, n: usize) -> f64 {
     let reference_law = Scenario { precision: Precision::F64, power: PowerMode::Exact, ..scenario }.law();
     let mut reference = Workload::<f64>::random(n, scenario.spin, 11);
     let incoming = Workload::<f64>::random(n, scenario.spin, 11);
-    reference.law_kernel(&reference_law);
+    reference.law_kernel(&reference_law, false);
     let law = scenario.law();
     let (v, w): ([Vec<f64>; 3], [Vec<f64>; 3]) = match scenario.precision {
         Precision::F64 => {
             let mut work = Workload::<f64>::random(n, scenario.spin, 11);
-            work.law_kernel(&law);
+            work.law_kernel(&law, false);
             (work.v, work.w)
         }
         Precision::F32 => {
             let mut work = Workload::<f32>::random(n, scenario.spin, 11);
-            work.law_kernel(&law);
+            work.law_kernel(&law, false);
             let widen = |c: &Vec<f32>| c.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
             (work.v.each_ref().map(widen), work.w.each_ref().map(widen))
         }

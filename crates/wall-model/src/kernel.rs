@@ -26,8 +26,10 @@ use crate::real::{select, Real};
 pub const PARALLEL_MIN: usize = 1 << 16;
 /// The size of the pieces a large batch is cut into for the threads.
 pub const LEAF: usize = 1 << 14;
-/// Independent accumulators of the tally loop (keeps the energy sums vectorisable).
+/// Independent accumulators of the tally's energy sums (keeps them vectorisable).
 const LANES: usize = 8;
+/// Particles whose energy losses are stored before they are summed.
+const TALLY_BLOCK: usize = 256;
 
 /// Everything about a law that the kernel needs, fixed for one batch.
 #[derive(Clone, Copy, Debug)]
@@ -203,30 +205,51 @@ fn sweep<
         return Tally::default();
     }
 
-    let mut counts = [[0u64; 4]; LANES];
-    let mut energy = [EnergyLoss::<f64>::default(); LANES];
-    let mut count = |lane: usize, (code, loss): (u8, EnergyLoss<T>)| {
-        for (k, slot) in counts[lane].iter_mut().enumerate() {
-            *slot += u64::from(code == k as u8);
+    // With a tally: the loop stays a plain vectorisable loop that stores each particle's losses
+    // in a scratch block and counts outcomes with integer sums; each block is then added up in
+    // LANES independent chains. The order depends only on the piece's length.
+    let mut counts = [0u64; 4];
+    let mut energy = [[0.0f64; LANES]; 4];
+    let mut scratch = [[T::ZERO; TALLY_BLOCK]; 4];
+    let mut base = 0;
+    while base < len {
+        let m = TALLY_BLOCK.min(len - base);
+        #[allow(clippy::needless_range_loop)] // one index for the particle and four scratch rows
+        for j in 0..m {
+            let (code, loss) = particle(base + j);
+            for (k, count) in counts.iter_mut().enumerate() {
+                *count += u64::from(code == k as u8);
+            }
+            scratch[0][j] = loss.material;
+            scratch[1][j] = loss.adhesion;
+            scratch[2][j] = loss.friction;
+            scratch[3][j] = loss.deposition;
         }
-        energy[lane] += loss.to_f64();
-    };
-    let blocks = len / LANES;
-    for block in 0..blocks {
-        for lane in 0..LANES {
-            count(lane, particle(block * LANES + lane));
+        for (sums, block) in energy.iter_mut().zip(&scratch) {
+            let chunks = block[..m].chunks_exact(LANES);
+            let rest = chunks.remainder();
+            for chunk in chunks {
+                for lane in 0..LANES {
+                    sums[lane] += chunk[lane].to_f64();
+                }
+            }
+            for (lane, x) in rest.iter().enumerate() {
+                sums[lane] += x.to_f64();
+            }
         }
+        base += m;
     }
-    for i in blocks * LANES..len {
-        count(i - blocks * LANES, particle(i));
+    let total = |sums: &[f64; LANES]| sums.iter().fold(0.0, |acc, x| acc + x);
+    Tally {
+        rebound: counts[0],
+        captured: counts[1],
+        skipped: counts[2],
+        invalid: counts[3],
+        energy: EnergyLoss {
+            material: total(&energy[0]),
+            adhesion: total(&energy[1]),
+            friction: total(&energy[2]),
+            deposition: total(&energy[3]),
+        },
     }
-    let mut tally = Tally::default();
-    for lane in 0..LANES {
-        tally.rebound += counts[lane][0];
-        tally.captured += counts[lane][1];
-        tally.skipped += counts[lane][2];
-        tally.invalid += counts[lane][3];
-        tally.energy += energy[lane];
-    }
-    tally
 }
