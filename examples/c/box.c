@@ -28,9 +28,15 @@ int main(int argc, char **argv) {
     printf("injected %zu airborne %zu deposited %zu\n", injected, box.n, deposited);
     printf("tally rebound %llu captured %llu skipped %llu invalid %llu\n", (unsigned long long)tally.rebound,
            (unsigned long long)tally.captured, (unsigned long long)tally.skipped, (unsigned long long)tally.invalid);
+    printf("deposited per wall (x0 x1 y0 y1 z0 z1): %llu %llu %llu %llu %llu %llu\n",
+           (unsigned long long)box.deposited_on[0], (unsigned long long)box.deposited_on[1],
+           (unsigned long long)box.deposited_on[2], (unsigned long long)box.deposited_on[3],
+           (unsigned long long)box.deposited_on[4], (unsigned long long)box.deposited_on[5]);
     printf("energy per unit mass (J/kg): material %.4e adhesion %.4e friction %.4e deposition %.4e\n",
            tally.energy_material, tally.energy_adhesion, tally.energy_friction, tally.energy_deposition);
     box_free(&box);
     depo_law_free(law);
-    return box.n + deposited == injected && tally.captured == deposited ? 0 : 1;
+    uint64_t mapped = 0;
+    for (int f = 0; f < 6; f++) mapped += box.deposited_on[f];
+    return box.n + deposited == injected && tally.captured == deposited && mapped == deposited ? 0 : 1;
 }

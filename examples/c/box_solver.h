@@ -29,7 +29,9 @@ typedef struct {
     /* the batch of wall hits of one step */
     size_t *hit_index;
     double *hv[3], *hn[3], *hvc;
+    int64_t *hface; /* which wall each hit is on: 2 axis + (1 on the far wall) */
     uint8_t *outcome;
+    uint64_t deposited_on[6]; /* the deposition map: particles captured per wall */
 } Box;
 
 /* A small portable generator, so every platform draws the same particles. */
@@ -42,6 +44,8 @@ static void box_init(Box *box, const DepoWallLaw *law, size_t n, uint64_t seed) 
     box->n = n;
     box->vc = malloc(n * sizeof(double));
     box->hvc = malloc(n * sizeof(double));
+    box->hface = malloc(n * sizeof(int64_t));
+    for (int f = 0; f < 6; f++) box->deposited_on[f] = 0;
     double *diameter = malloc(n * sizeof(double));
     for (int a = 0; a < 3; a++) {
         box->x[a] = malloc(n * sizeof(double));
@@ -75,6 +79,7 @@ static void box_free(Box *box) {
     free(box->outcome);
     free(box->vc);
     free(box->hvc);
+    free(box->hface);
 }
 
 /* One time step of length dt (s); returns the number of particles deposited in it. */
@@ -104,6 +109,7 @@ static size_t box_step(Box *box, const DepoWallLaw *law, double dt, DepoTally *t
                 box->hn[a][hits] = a == wall_axis ? normal_sign : 0.0;
             }
             box->hvc[hits] = box->vc[i];
+            box->hface[hits] = 2 * wall_axis + (normal_sign < 0.0 ? 1 : 0);
             hits++;
         }
     }
@@ -116,6 +122,7 @@ static size_t box_step(Box *box, const DepoWallLaw *law, double dt, DepoTally *t
         .outcome = box->outcome,
     };
     CHECK(depo_apply_sized_f64(law, &batch, box->hvc, tally));
+    CHECK(depo_accumulate_deposits(hits, box->outcome, box->hface, NULL, 6, box->deposited_on, NULL));
 
     /* write back rebounds; mark captured particles, then remove them keeping the order */
     size_t deposited = 0;

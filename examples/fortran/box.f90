@@ -10,6 +10,8 @@ program box
   integer :: injected, airborne, deposited, hits, i, k, a, step, wall, kept, ierr
   real(dp), allocatable :: x(:, :), v(:, :), hv(:, :), hn(:, :), diameter(:), vc(:), hvc(:)
   integer, allocatable :: idx(:)
+  integer(c_int64_t), allocatable :: hface(:)
+  integer(c_int64_t) :: deposited_on(6)
   integer(c_int8_t), allocatable :: outcome(:)
   logical, allocatable :: gone(:)
   real(dp) :: xa, sign, e(2), r(2)
@@ -35,7 +37,8 @@ program box
   print '(a, f8.5, a, f8.5)', 'e(1 m/s) = ', e(1), '  e(0.05 m/s) = ', e(2)
 
   allocate (x(injected, 3), v(injected, 3), hv(injected, 3), hn(injected, 3), idx(injected), outcome(injected))
-  allocate (gone(injected), diameter(injected), vc(injected), hvc(injected))
+  allocate (gone(injected), diameter(injected), vc(injected), hvc(injected), hface(injected))
+  deposited_on = 0
   seed = 12345
   do i = 1, injected
     do a = 1, 3
@@ -73,12 +76,14 @@ program box
         hn(hits, :) = 0.0_dp
         hn(hits, wall) = sign
         hvc(hits) = vc(i)
+        hface(hits) = 2*(wall - 1) + merge(0, 1, sign > 0.0_dp)
       end if
     end do
     ! The batch: columns of the solver's hit arrays, passed by address.
     call depo_apply(law, hv(1:hits, 1), hv(1:hits, 2), hv(1:hits, 3), outcome(1:hits), &
                     nx=hn(1:hits, 1), ny=hn(1:hits, 2), nz=hn(1:hits, 3), &
                     capture_velocity=hvc(1:hits), tally=tally)
+    call depo_accumulate_deposits(outcome(1:hits), hface(1:hits), deposited_on)
     gone(1:airborne) = .false.
     do k = 1, hits
       if (outcome(k) == DEPO_CAPTURED) then
@@ -102,9 +107,11 @@ program box
   print '(a, i0, a, i0, a, i0)', 'injected ', injected, ' airborne ', airborne, ' deposited ', deposited
   print '(a, i0, a, i0, a, i0, a, i0)', 'tally rebound ', tally%rebound, ' captured ', tally%captured, &
     ' skipped ', tally%skipped, ' invalid ', tally%invalid
+  print '(a, 6(1x, i0))', 'deposited per wall (x0 x1 y0 y1 z0 z1):', deposited_on
   call depo_law_destroy(law)
   call depo_law_destroy(bad)
   if (airborne + deposited /= injected .or. tally%captured /= int(deposited, c_int64_t)) error stop 'particles lost'
+  if (sum(deposited_on) /= int(deposited, c_int64_t)) error stop 'deposition map does not add up'
 
 contains
 

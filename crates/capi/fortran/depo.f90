@@ -13,7 +13,8 @@ module depo
   public :: DEPO_OK, DEPO_ERR_NULL, DEPO_ERR_INVALID, DEPO_ERR_PANIC
   public :: DEPO_REBOUND, DEPO_CAPTURED, DEPO_SKIPPED, DEPO_INVALID
   public :: depo_law_create, depo_law_from_preset, depo_law_destroy
-  public :: depo_apply, depo_coefficients, depo_capture_velocities, depo_set_num_threads
+  public :: depo_apply, depo_coefficients, depo_capture_velocities, depo_accumulate_deposits
+  public :: depo_set_num_threads
   public :: depo_last_error_message, depo_version_string
 
   !> Status codes (int32_t).
@@ -94,6 +95,14 @@ module depo
       integer(c_size_t), value :: n
       integer(c_int32_t) :: status
     end function c_depo_capture_velocities
+
+    function c_depo_accumulate_deposits(n, outcome, face, mass, nfaces, count, deposited_mass) &
+      bind(C, name="depo_accumulate_deposits") result(status)
+      import :: c_ptr, c_size_t, c_int32_t
+      integer(c_size_t), value :: n, nfaces
+      type(c_ptr), value :: outcome, face, mass, count, deposited_mass
+      integer(c_int32_t) :: status
+    end function c_depo_accumulate_deposits
 
     function c_depo_coefficients(law, n, vn, e, r, rho, captured) bind(C, name="depo_coefficients") result(status)
       import :: c_ptr, c_size_t, c_int32_t
@@ -301,5 +310,37 @@ contains
     end if
     call handle(c_depo_coefficients(law%ptr, int(size(vn), c_size_t), pv, pe, pr, prho, pc), ierr)
   end subroutine depo_coefficients
+
+  !> Adds the particles a depo_apply call captured to a deposition map: count(face(i) + 1) += 1
+  !> (face ids are 0-based, as the host's C arrays are) and, with mass and deposited_mass,
+  !> deposited_mass(face(i) + 1) += mass(i) (kg). A face id outside 0..size(count)-1 of a
+  !> captured particle is DEPO_ERR_INVALID and changes nothing.
+  subroutine depo_accumulate_deposits(outcome, face, count, mass, deposited_mass, ierr)
+    integer(c_int8_t), intent(in), target, contiguous :: outcome(:)
+    integer(c_int64_t), intent(in), target, contiguous :: face(:)
+    integer(c_int64_t), intent(inout), target, contiguous :: count(:)
+    real(c_double), intent(in), target, contiguous, optional :: mass(:)
+    real(c_double), intent(inout), target, contiguous, optional :: deposited_mass(:)
+    integer, intent(out), optional :: ierr
+    type(c_ptr) :: po, pf, pc, pm, pd
+    po = c_null_ptr; pf = c_null_ptr; pc = c_null_ptr; pm = c_null_ptr; pd = c_null_ptr
+    if (size(face) /= size(outcome)) then
+      if (present(ierr)) then
+        ierr = DEPO_ERR_INVALID
+        return
+      end if
+      error stop "depo_accumulate_deposits: face must have the size of outcome"
+    end if
+    if (size(outcome) > 0) then
+      po = c_loc(outcome)
+      pf = c_loc(face)
+    end if
+    if (size(count) > 0) pc = c_loc(count)
+    if (present(mass) .and. present(deposited_mass)) then
+      if (size(mass) > 0) pm = c_loc(mass)
+      if (size(deposited_mass) > 0) pd = c_loc(deposited_mass)
+    end if
+    call handle(c_depo_accumulate_deposits(int(size(outcome), c_size_t), po, pf, pm, int(size(count), c_size_t), pc, pd), ierr)
+  end subroutine depo_accumulate_deposits
 
 end module depo

@@ -87,6 +87,8 @@ fn presets_by_id_and_unknown_ids() {
     let mut params = DepoLawParams { k1: 0.0, k2: 0.0, kappa1: 0.0, kappa2: 0.0, p: 0.0, q: 0.0, vc: 0.0, mu: 0.0 };
     assert_eq!(unsafe { depo_law_params(law, &mut params) }, DEPO_OK);
     assert_eq!((params.k1, params.kappa1, params.vc, params.q), (12.5, 0.065, 0.074, 0.5));
+    assert_eq!(unsafe { depo_law_params(null(), &mut params) }, DEPO_ERR_NULL);
+    assert_eq!(unsafe { depo_law_params(law, null_mut()) }, DEPO_ERR_NULL);
     unsafe { depo_law_free(law) };
     let mut other = null_mut();
     assert_eq!(unsafe { depo_law_preset(c"granite".as_ptr(), &mut other) }, DEPO_ERR_INVALID);
@@ -385,6 +387,8 @@ fn capture_velocities_from_diameters() {
         DEPO_ERR_INVALID
     );
     assert_eq!(unsafe { depo_capture_velocities(law, 70e-6, 1.51, 3, d.as_ptr(), null_mut()) }, DEPO_ERR_NULL);
+    assert_eq!(unsafe { depo_capture_velocities(null(), 70e-6, 1.51, 3, d.as_ptr(), out.as_mut_ptr()) }, DEPO_ERR_NULL);
+    assert_eq!(unsafe { depo_capture_velocities(law, 70e-6, 1.51, 0, null(), null_mut()) }, DEPO_OK);
     unsafe { depo_law_free(law) };
 }
 
@@ -411,6 +415,12 @@ fn sized_apply_uses_each_particle_s_capture_velocity() {
     let mut b = Arrays::new(&rows);
     assert_eq!(unsafe { depo_apply_sized_f64(law, &mut b.batch(false, false), null(), &mut tally) }, DEPO_ERR_NULL);
     assert!(last_error().contains("capture_velocity"));
+    assert_eq!(
+        unsafe { depo_apply_sized_f64(null(), &mut b.batch(false, false), vc.as_ptr(), &mut tally) },
+        DEPO_ERR_NULL
+    );
+    assert_eq!(unsafe { depo_apply_sized_f64(law, null_mut(), vc.as_ptr(), &mut tally) }, DEPO_ERR_NULL);
+    assert_eq!(unsafe { depo_apply_f32(law, null_mut(), &mut tally) }, DEPO_ERR_NULL);
     let mut batch = b.batch(false, false);
     let overlapping = batch.vx.cast_const();
     assert_eq!(unsafe { depo_apply_sized_f64(law, &mut batch, overlapping, null_mut()) }, DEPO_ERR_INVALID);

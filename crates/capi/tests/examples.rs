@@ -144,6 +144,11 @@ fn c_example_runs_and_is_clean_under_valgrind() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     check_report(&stdout);
     assert!(stdout.contains("rejected: invalid wall-law parameter kappa1"), "{stdout}");
+    // The deposition map adds up, and gravity puts most deposits on the floor (z0).
+    let map_line = stdout.lines().find(|l| l.starts_with("deposited per wall")).expect("deposition map line");
+    let map: Vec<u64> = map_line.rsplit(':').next().unwrap().split_whitespace().map(|x| x.parse().unwrap()).collect();
+    assert_eq!(map.iter().sum::<u64>(), field(&stdout, "deposited"), "{stdout}");
+    assert!(map[4] > map.iter().sum::<u64>() / 2, "floor should dominate: {map_line}");
 
     if have("valgrind") {
         let out = run(Command::new("valgrind")
