@@ -1,0 +1,144 @@
+//! `depo bench`: the wall-law kernels' throughput against a copy kernel moving the same bytes
+//! (timed interleaved), and each kernel's error against the f64 libm-pow kernel.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use depo::bench::{error_against_reference, measure, standard_scenarios};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+
+use super::plot::{self, Series};
+use super::{Error, Format};
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Impacts per kernel call.
+    #[arg(long, default_value_t = 10_000_000)]
+    n: usize,
+    /// Threads.
+    #[arg(long, default_value_t = 2)]
+    threads: usize,
+    /// Interleaved rounds per kernel (medians are reported).
+    #[arg(long, default_value_t = 5)]
+    reps: usize,
+    /// Only the kernels whose label contains this text.
+    #[arg(long, default_value = "")]
+    filter: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    format: Format,
+    /// Also draw throughput (fraction of the ceiling) against error into this SVG file.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+}
+
+/// One kernel's figures; the JSON keys are stable.
+#[derive(Serialize)]
+struct Row {
+    kernel: String,
+    impacts_per_second: f64,
+    ceiling_impacts_per_second: f64,
+    fraction_of_ceiling: f64,
+    gigabytes_per_second: f64,
+    max_error: f64,
+}
+
+pub fn run(args: &BenchArgs) -> Result<(), Error> {
+    if args.n < 1000 || args.threads == 0 || args.reps == 0 {
+        return Err("--n must be at least 1000, --threads and --reps at least 1".into());
+    }
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build().map_err(|e| e.to_string())?;
+    let scenarios: Vec<_> =
+        standard_scenarios(args.n).into_iter().filter(|s| s.label().contains(&args.filter)).collect();
+    if scenarios.is_empty() {
+        return Err(format!("--filter '{}' matches no kernel", args.filter));
+    }
+    let progress = ProgressBar::new(scenarios.len() as u64);
+    progress.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").map_err(|e| e.to_string())?);
+    let mut rows = Vec::new();
+    for scenario in scenarios {
+        progress.set_message(scenario.label());
+        let m = measure(scenario, &pool, args.reps);
+        rows.push(Row {
+            kernel: scenario.label(),
+            impacts_per_second: m.rate(),
+            ceiling_impacts_per_second: m.ceiling_rate(),
+            fraction_of_ceiling: m.fraction(),
+            gigabytes_per_second: m.rate() * m.bytes_per_impact() as f64 / 1e9,
+            max_error: error_against_reference(scenario, args.n.min(200_000)),
+        });
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    match args.format {
+        Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
+        Format::Csv => {
+            out!("kernel,impacts_per_second,ceiling_impacts_per_second,fraction_of_ceiling,gigabytes_per_second,max_error");
+            for r in &rows {
+                out!(
+                    "{},{},{},{},{},{}",
+                    r.kernel,
+                    r.impacts_per_second,
+                    r.ceiling_impacts_per_second,
+                    r.fraction_of_ceiling,
+                    r.gigabytes_per_second,
+                    r.max_error
+                );
+            }
+        }
+        Format::Table => {
+            out!("N = {}, {} threads, median of {} interleaved rounds", args.n, args.threads, args.reps);
+            out!(
+                "{:<30} {:>11} {:>11} {:>9} {:>7} {:>10}",
+                "kernel",
+                "Mimpacts/s",
+                "ceiling",
+                "fraction",
+                "GB/s",
+                "max error"
+            );
+            for r in &rows {
+                out!(
+                    "{:<30} {:>11.0} {:>11.0} {:>9.2} {:>7.1} {:>10.1e}",
+                    r.kernel,
+                    r.impacts_per_second / 1e6,
+                    r.ceiling_impacts_per_second / 1e6,
+                    r.fraction_of_ceiling,
+                    r.gigabytes_per_second,
+                    r.max_error
+                );
+            }
+        }
+    }
+    if let Some(path) = &args.plot {
+        // Run time against error: each kernel a point (error floored at 1e-17 for the log axis).
+        let series: Vec<Series> = rows
+            .iter()
+            .map(|r| Series { name: r.kernel.clone(), points: vec![(r.max_error.max(1e-17), r.fraction_of_ceiling)] })
+            .collect();
+        plot_points(path, &series)?;
+    }
+    Ok(())
+}
+
+fn plot_points(path: &std::path::Path, series: &[Series]) -> Result<(), Error> {
+    // A point per kernel; drawn as short horizontal marks so that each has a legend entry.
+    let widened: Vec<Series> = series
+        .iter()
+        .map(|s| Series {
+            name: s.name.clone(),
+            points: s.points.iter().flat_map(|&(x, y)| [(x / 1.3, y), (x * 1.3, y)]).collect(),
+        })
+        .collect();
+    plot::lines(
+        path,
+        "Kernel speed against error",
+        "max error vs f64 libm-pow kernel",
+        "fraction of copy ceiling",
+        &widened,
+        true,
+    )?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}

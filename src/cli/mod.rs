@@ -1,0 +1,133 @@
+//! Subcommands of the `depo` command line. Each prints a table (default), CSV or JSON; user
+//! errors come back as one line naming what is wrong, never a panic.
+
+/// `println!` for the command's output: a reader that closes the pipe early (`depo presets |
+/// head`) ends the command quietly instead of with a panic.
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::cli::emit(format_args!($($arg)*))
+    };
+}
+
+mod bench;
+mod curve;
+mod impact;
+mod plot;
+mod presets;
+
+use clap::{Args as ClapArgs, Parser, Subcommand, ValueEnum};
+use depo::wall_model::{LawParams, WallLaw};
+
+/// One line of what went wrong, for the user.
+pub type Error = String;
+
+#[derive(Parser, Debug)]
+#[command(name = "depo", version, about = "Particle deposition with the Brach & Dunn (1998) wall law")]
+pub struct Args {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// The presets of the paper's Table 1, with their sources.
+    Presets(presets::PresetsArgs),
+    /// R, rho, e and capture against the normal impact speed |vn|.
+    Curve(curve::CurveArgs),
+    /// One impact explained: coefficients, rolling or sliding, outcome, energy by mechanism.
+    Impact(impact::ImpactArgs),
+    /// Kernel throughput against a copy kernel moving the same bytes, and each kernel's error.
+    Bench(bench::BenchArgs),
+}
+
+/// Output format.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Format {
+    #[default]
+    Table,
+    Csv,
+    Json,
+}
+
+/// A law given by preset id or by its constants (Eq. 10 form), with optional friction.
+#[derive(ClapArgs, Debug, Clone)]
+pub struct LawArgs {
+    /// A preset id of `depo presets` (e.g. li1997-sio2).
+    #[arg(long, conflicts_with_all = ["k", "kappa", "vc"])]
+    preset: Option<String>,
+    /// Restitution velocity k = k1 = k2 (m/s).
+    #[arg(long, requires_all = ["kappa", "vc"], allow_hyphen_values = true)]
+    k: Option<f64>,
+    /// Adhesion velocity kappa = kappa1 = kappa2 (m/s).
+    #[arg(long, allow_hyphen_values = true)]
+    kappa: Option<f64>,
+    /// Capture velocity (m/s); <= 0: never captured by speed.
+    #[arg(long, allow_hyphen_values = true)]
+    vc: Option<f64>,
+    /// Exponent p of Eq. (8) [default: the preset's, or 1].
+    #[arg(long, allow_hyphen_values = true)]
+    p: Option<f64>,
+    /// Exponent q of Eq. (9) [default: the preset's, or 1].
+    #[arg(long, allow_hyphen_values = true)]
+    q: Option<f64>,
+    /// Friction coefficient [default: the preset's (0), or 0].
+    #[arg(long, allow_hyphen_values = true)]
+    mu: Option<f64>,
+}
+
+impl LawArgs {
+    /// The law these arguments describe, or a one-line error.
+    pub fn law(&self) -> Result<WallLaw, Error> {
+        let base = match (&self.preset, self.k, self.kappa, self.vc) {
+            (Some(id), ..) => *WallLaw::preset(id).map_err(|e| e.to_string())?.params(),
+            (None, Some(k), Some(kappa), Some(vc)) => LawParams::symmetric(k, kappa, vc, 1.0, 1.0),
+            _ => return Err("give a law: --preset ID, or --k K --kappa KAPPA --vc VC".into()),
+        };
+        let params = LawParams {
+            p: self.p.unwrap_or(base.p),
+            q: self.q.unwrap_or(base.q),
+            mu: self.mu.unwrap_or(base.mu),
+            ..base
+        };
+        WallLaw::new(params).map_err(|e| e.to_string())
+    }
+}
+
+/// Parses "X,Y,Z" into three numbers.
+pub fn parse_vector(text: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!("expected three comma-separated numbers, got '{text}'"));
+    }
+    let mut out = [0.0f64; 3];
+    for (slot, part) in out.iter_mut().zip(&parts) {
+        *slot = part.parse().map_err(|_| format!("'{part}' is not a number"))?;
+        if !slot.is_finite() {
+            return Err(format!("'{part}' is not finite"));
+        }
+    }
+    Ok(out)
+}
+
+/// Writes one line to stdout; exits quietly with success when the reader has gone away.
+pub fn emit(line: std::fmt::Arguments<'_>) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    if let Err(error) = writeln!(stdout, "{line}") {
+        if error.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("depo: cannot write output: {error}");
+        std::process::exit(1);
+    }
+}
+
+/// Runs the parsed command.
+pub fn run(args: Args) -> Result<(), Error> {
+    match args.command {
+        Command::Presets(a) => presets::run(&a),
+        Command::Curve(a) => curve::run(&a),
+        Command::Impact(a) => impact::run(&a),
+        Command::Bench(a) => bench::run(&a),
+    }
+}

@@ -1,0 +1,156 @@
+//! End-to-end tests of the `depo` command: each subcommand on small inputs, its output checked
+//! against the library, and user errors as one line with a non-zero exit and no panic.
+
+use std::process::{Command, Output};
+
+use depo::wall_model::WallLaw;
+use serde_json::Value;
+
+fn depo(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_depo")).args(args).output().expect("run depo")
+}
+
+fn ok_json(args: &[&str]) -> Value {
+    let out = depo(args);
+    assert!(out.status.success(), "depo {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("JSON output")
+}
+
+/// A user error: non-zero exit, one line on stderr that names `what`, no panic.
+fn user_error(args: &[&str], what: &str) {
+    let out = depo(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "depo {args:?} should fail");
+    assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+    assert!(stderr.starts_with("depo: ") && stderr.contains(what), "{stderr}");
+}
+
+#[test]
+fn presets_lists_table_1() {
+    let rows = ok_json(&["presets", "--format", "json"]);
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 10);
+    assert_eq!(rows[6]["id"], "li1997-sio2");
+    assert_eq!(rows[3]["reconstructed"], true);
+    for row in rows {
+        if let (Some(rc), Some(table)) = (row["restitution_at_vc"].as_f64(), row["table_last_column"].as_f64()) {
+            let shown = if row["id"] == "sim-35um" { rc * rc } else { rc };
+            assert!(((shown * 1000.0).round() / 1000.0 - table).abs() <= 0.001 + 1e-9, "{row}");
+        }
+    }
+    let table = String::from_utf8(depo(&["presets"]).stdout).unwrap();
+    assert!(table.contains("dahneke1975-quartz") && table.contains("mu = 0"));
+}
+
+#[test]
+fn curve_matches_the_law_in_every_format() {
+    let law = WallLaw::preset("li1997-sio2").unwrap();
+    let json = ok_json(&["curve", "--preset", "li1997-sio2", "--points", "7", "--format", "json"]);
+    let points = json["points"].as_array().unwrap();
+    assert_eq!(points.len(), 7);
+    assert_eq!(json["law"]["vc"], 0.074);
+    for p in points {
+        let vn = p["vn"].as_f64().unwrap();
+        let c = law.coefficients(vn);
+        assert_eq!(p["e"].as_f64().unwrap(), c.overall);
+        assert_eq!(p["R"].as_f64().unwrap(), c.restitution);
+        assert_eq!(p["captured"].as_bool().unwrap(), c.captured);
+    }
+    let csv = String::from_utf8(
+        depo(&[
+            "curve", "--k", "12.5", "--kappa", "0.065", "--vc", "0.074", "--q", "0.5", "--format", "csv", "--points",
+            "4",
+        ])
+        .stdout,
+    )
+    .unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines[0], "vn,R,rho,e,captured");
+    assert_eq!(lines.len(), 5);
+    let last: Vec<f64> = lines[4].split(',').map(|x| x.parse().unwrap()).collect();
+    assert_eq!(last[0], 10.0);
+    assert!((last[3] - law.overall_restitution(10.0)).abs() < 1e-12);
+    // a negative capture velocity is a value, not an option
+    assert!(depo(&["curve", "--k", "51.7", "--kappa", "4.07", "--vc", "-0.44", "--points", "3"]).status.success());
+}
+
+#[test]
+fn curve_writes_a_figure() {
+    let path = std::env::temp_dir().join(format!("depo-curve-{}.svg", std::process::id()));
+    let out = depo(&["curve", "--preset", "sim-35um", "--plot", path.to_str().unwrap()]);
+    assert!(out.status.success());
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("polyline") && svg.contains("|vn| (m/s)"));
+    std::fs::remove_file(path).ok();
+}
+
+#[test]
+fn impact_explains_a_rolling_rebound_and_its_energy() {
+    let r =
+        ok_json(&["impact", "--preset", "li1997-sio2", "--mu", "0.5", "--velocity", "0.5,0,-1", "--format", "json"]);
+    // Hand-computed in the wall-model tests: e = 0.731990683, V_t = 5/7 * 0.5, rolling.
+    assert!((r["e"].as_f64().unwrap() - 0.731_990_683).abs() < 1e-9);
+    assert_eq!(r["regime"], "rolling at separation");
+    assert_eq!(r["outcome"], "rebound");
+    assert!((r["velocity_after"][0].as_f64().unwrap() - 2.5 / 7.0).abs() < 1e-12);
+    let before = r["kinetic_energy_before"].as_f64().unwrap();
+    let after = r["kinetic_energy_after"].as_f64().unwrap();
+    let lost: f64 = ["loss_material", "loss_adhesion", "loss_friction", "loss_deposition"]
+        .iter()
+        .map(|k| r[k].as_f64().unwrap())
+        .sum();
+    assert!(after < before);
+    // Without tracked spin the spin the impact gives (5/4 j^2) leaves the budget.
+    let j = r["tangential_impulse"].as_f64().unwrap();
+    assert!((before - after - lost - 1.25 * j * j).abs() < 1e-12, "{r}");
+
+    let slow = ok_json(&["impact", "--preset", "li1997-sio2", "--velocity", "0.2,0,-0.05", "--format", "json"]);
+    assert_eq!(slow["outcome"], "captured (deposited)");
+    assert_eq!(slow["velocity_after"], serde_json::json!([0.0, 0.0, 0.0]));
+    let away = ok_json(&["impact", "--preset", "li1997-sio2", "--velocity", "0,0,1", "--format", "json"]);
+    assert_eq!(away["impact"], false);
+    let table = String::from_utf8(
+        depo(&[
+            "impact",
+            "--preset",
+            "sim-70um",
+            "--velocity",
+            "0.1,0,-0.5",
+            "--spin",
+            "0,-2000,0",
+            "--radius",
+            "35e-6",
+            "--mu",
+            "0.3",
+        ])
+        .stdout,
+    )
+    .unwrap();
+    assert!(table.contains("spin after") && table.contains("lost to"));
+}
+
+#[test]
+fn user_errors_are_one_line() {
+    user_error(&["curve", "--preset", "granite"], "unknown wall-law preset 'granite'");
+    user_error(&["curve", "--k", "-1", "--kappa", "0.1", "--vc", "0.1"], "k1 = -1");
+    user_error(&["curve", "--preset", "li1997-sio2", "--vn-min", "5", "--vn-max", "1"], "--vn-min");
+    user_error(&["impact", "--preset", "li1997-sio2", "--velocity", "1,x,2"], "--velocity: 'x' is not a number");
+    user_error(&["impact", "--preset", "li1997-sio2", "--velocity", "1,0,-1", "--normal", "0,0,0"], "--normal");
+    user_error(&["curve", "--preset", "li1997-sio2", "--plot", "/nonexistent-dir/x.svg"], "cannot draw");
+    user_error(&["bench", "--n", "10000", "--filter", "no such kernel"], "matches no kernel");
+}
+
+#[test]
+fn bench_reports_ratio_and_error() {
+    let rows = ok_json(&["bench", "--n", "20000", "--reps", "1", "--filter", "p=1 q=1", "--format", "json"]);
+    let rows = rows.as_array().unwrap();
+    assert!(rows.len() >= 4);
+    for row in rows {
+        assert!(row["fraction_of_ceiling"].as_f64().unwrap() > 0.0);
+        assert!(row["impacts_per_second"].as_f64().unwrap() > 0.0);
+        let error = row["max_error"].as_f64().unwrap();
+        let f32_kernel = row["kernel"].as_str().unwrap().starts_with("f32");
+        assert!(error < if f32_kernel { 1e-4 } else { 1e-12 }, "{row}");
+    }
+}
