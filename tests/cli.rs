@@ -154,3 +154,56 @@ fn bench_reports_ratio_and_error() {
         assert!(error < if f32_kernel { 1e-4 } else { 1e-12 }, "{row}");
     }
 }
+
+fn write_csv(name: &str, text: &str) -> std::path::PathBuf {
+    let path = std::env::temp_dir().join(format!("depo-{}-{name}", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn fit_recovers_a_preset_from_its_curve() {
+    let law = WallLaw::preset("sim-70um").unwrap();
+    let mut csv = String::from("vn,e\n");
+    for i in 0..30 {
+        let vn = 0.08 * (100.0f64).powf(i as f64 / 29.0);
+        csv += &format!("{},{}\n", -vn, law.overall_restitution(vn)); // negative speeds are fine
+    }
+    let path = write_csv("fit.csv", &csv);
+    let r = ok_json(&["fit", path.to_str().unwrap(), "--q", "0.5", "--format", "json"]);
+    for key in ["k", "kappa", "vc", "p", "q", "fitting_index", "vc_low", "vc_high"] {
+        assert!(r[key].is_number(), "{key} missing: {r}");
+    }
+    assert!((r["k"].as_f64().unwrap() - 12.5).abs() < 1e-3);
+    assert!((r["kappa"].as_f64().unwrap() - 0.065).abs() < 1e-5);
+    assert!((r["vc"].as_f64().unwrap() - 0.074).abs() < 1e-5);
+    assert!(r["vc_low"].as_f64().unwrap() <= 0.074 && 0.074 <= r["vc_high"].as_f64().unwrap());
+    assert_eq!(r["vc_extrapolated"], false);
+    std::fs::remove_file(path).ok();
+}
+
+#[test]
+fn fit_names_bad_rows_and_warns_on_extrapolation() {
+    let bad = write_csv("bad.csv", "vn,e\n0.1,0.3\n0.2,abc\n");
+    user_error(&["fit", bad.to_str().unwrap()], "bad.csv:3: e 'abc' is not a finite number");
+    let no_column = write_csv("cols.csv", "speed,e\n0.1,0.3\n");
+    user_error(&["fit", no_column.to_str().unwrap()], "must name the columns vn and e");
+    user_error(&["fit", "/nonexistent/data.csv"], "/nonexistent/data.csv");
+
+    let law = WallLaw::preset("li1997-sio2").unwrap();
+    let mut csv = String::from("vn,e\n");
+    for i in 0..20 {
+        let vn = 1.0 * (5.0f64).powf(i as f64 / 19.0); // far above vc = 0.074
+        csv += &format!("{vn},{}\n", law.overall_restitution(vn) + if i % 2 == 0 { 0.01 } else { -0.01 });
+    }
+    let far = write_csv("far.csv", &csv);
+    let out = depo(&["fit", far.to_str().unwrap(), "--q", "0.5", "--format", "json"]);
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("warning") && stderr.contains("extrapolation"), "{stderr}");
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["vc_extrapolated"], true);
+    for path in [bad, no_column, far] {
+        std::fs::remove_file(path).ok();
+    }
+}

@@ -115,7 +115,11 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
         // Run time against error: each kernel a point (error floored at 1e-17 for the log axis).
         let series: Vec<Series> = rows
             .iter()
-            .map(|r| Series { name: r.kernel.clone(), points: vec![(r.max_error.max(1e-17), r.fraction_of_ceiling)] })
+            .map(|r| Series {
+                name: r.kernel.clone(),
+                points: vec![(r.max_error.max(1e-17), r.fraction_of_ceiling)],
+                markers: true,
+            })
             .collect();
         plot_points(path, &series)?;
     }
@@ -123,20 +127,12 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
 }
 
 fn plot_points(path: &std::path::Path, series: &[Series]) -> Result<(), Error> {
-    // A point per kernel; drawn as short horizontal marks so that each has a legend entry.
-    let widened: Vec<Series> = series
-        .iter()
-        .map(|s| Series {
-            name: s.name.clone(),
-            points: s.points.iter().flat_map(|&(x, y)| [(x / 1.3, y), (x * 1.3, y)]).collect(),
-        })
-        .collect();
     plot::lines(
         path,
         "Kernel speed against error",
         "max error vs f64 libm-pow kernel",
         "fraction of copy ceiling",
-        &widened,
+        series,
         true,
     )?;
     eprintln!("wrote {}", path.display());

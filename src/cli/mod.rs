@@ -11,6 +11,7 @@ macro_rules! out {
 
 mod bench;
 mod curve;
+mod fit;
 mod impact;
 mod plot;
 mod presets;
@@ -36,6 +37,8 @@ enum Command {
     Curve(curve::CurveArgs),
     /// One impact explained: coefficients, rolling or sliding, outcome, energy by mechanism.
     Impact(impact::ImpactArgs),
+    /// Fit the law's constants to measured (vn, e) data, with uncertainties.
+    Fit(fit::FitArgs),
     /// Kernel throughput against a copy kernel moving the same bytes, and each kernel's error.
     Bench(bench::BenchArgs),
 }
@@ -128,6 +131,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         Command::Presets(a) => presets::run(&a),
         Command::Curve(a) => curve::run(&a),
         Command::Impact(a) => impact::run(&a),
+        Command::Fit(a) => fit::run(&a),
         Command::Bench(a) => bench::run(&a),
     }
 }

@@ -6,10 +6,11 @@ use plotters::prelude::*;
 
 use super::Error;
 
-/// One named line of `(x, y)` points.
+/// One named series of `(x, y)` points, drawn as a line or as markers.
 pub struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
+    pub markers: bool,
 }
 
 /// Draws `series` on one chart, logarithmic in x when `log_x`, into the SVG file `path`.
@@ -41,11 +42,19 @@ pub fn lines(
             chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw().map_err(|e| fail(&e))?;
             for (i, s) in series.iter().enumerate() {
                 let color = colors[i % colors.len()];
-                chart
-                    .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
-                    .map_err(|e| fail(&e))?
-                    .label(s.name.as_str())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                if s.markers {
+                    chart
+                        .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                        .map_err(|e| fail(&e))?
+                        .label(s.name.as_str())
+                        .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
+                        .map_err(|e| fail(&e))?
+                        .label(s.name.as_str())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                }
             }
             chart
                 .configure_series_labels()

@@ -14,6 +14,8 @@
 //! - [`energy`]: where each impact's energy goes (Eqs. 1, 14).
 //! - [`size`]: the capture velocity against particle diameter (Fig. 8), for polydisperse
 //!   batches that carry one capture velocity per particle.
+//! - [`fit`]: measured `(|vn|, e)` data to the law's constants by nonlinear least squares, with
+//!   uncertainties and a warning when `vc` is an extrapolation.
 //! - [`batch`]: structure-of-arrays batches borrowed from the host, per-particle
 //!   [`Outcome`]s and the [`Tally`]; [`kernel`] is the loop over a batch, one monomorphised,
 //!   vectorised variant per scene, run across cores with rayon.
@@ -41,6 +43,7 @@
 
 pub mod batch;
 pub mod energy;
+pub mod fit;
 pub mod impact;
 pub mod kernel;
 pub mod law;

@@ -1,0 +1,182 @@
+//! `depo fit DATA.csv`: measured restitution to the law's constants (the paper's Eq. 10 fits).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use depo::wall_model::fit::{fit, Exponents, FitReport, Sample};
+use depo::wall_model::WallLaw;
+use serde::Serialize;
+
+use super::plot::{self, Series};
+use super::{Error, Format};
+
+#[derive(Args, Debug)]
+pub struct FitArgs {
+    /// CSV with a header naming the columns `vn` and `e` (optional `weight`); speeds may be
+    /// given as positive numbers.
+    data: PathBuf,
+    /// Exponent p of Eq. (8), held fixed unless --free-exponents (then the starting value).
+    #[arg(long, default_value_t = 1.0)]
+    p: f64,
+    /// Exponent q of Eq. (9), held fixed unless --free-exponents (then the starting value).
+    #[arg(long, default_value_t = 1.0)]
+    q: f64,
+    /// Fit p and q too.
+    #[arg(long)]
+    free_exponents: bool,
+    /// Output format (table or json).
+    #[arg(long, value_enum, default_value_t)]
+    format: Format,
+    /// Also draw the data and the fitted e against |vn| into this SVG file.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+}
+
+/// The fit as printed; the JSON keys are stable.
+#[derive(Serialize)]
+struct Output {
+    k: f64,
+    kappa: f64,
+    vc: f64,
+    p: f64,
+    q: f64,
+    fitting_index: f64,
+    rmse: f64,
+    vc_low: f64,
+    vc_high: f64,
+    k_se: f64,
+    kappa_se: f64,
+    vc_se: f64,
+    p_se: f64,
+    q_se: f64,
+    vc_extrapolated: bool,
+    samples: usize,
+}
+
+/// Reads the samples; an unreadable file or a bad row is one line naming the file and line.
+fn read(path: &PathBuf) -> Result<Vec<Sample>, Error> {
+    let name = path.display();
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_path(path)
+        .map_err(|e| format!("{name}: {e}"))?;
+    let headers = reader.headers().map_err(|e| format!("{name}: {e}"))?.clone();
+    let column = |wanted: &str| headers.iter().position(|h| h.eq_ignore_ascii_case(wanted));
+    let (vn, e) = match (column("vn"), column("e")) {
+        (Some(vn), Some(e)) => (vn, e),
+        _ => {
+            return Err(format!(
+                "{name}: the header must name the columns vn and e (found: {})",
+                headers.iter().collect::<Vec<_>>().join(", ")
+            ))
+        }
+    };
+    let weight = column("weight");
+    let mut samples = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| format!("{name}: {e}"))?;
+        let line = record.position().map_or(0, |p| p.line());
+        let number = |index: usize, what: &str| -> Result<f64, Error> {
+            let text = record.get(index).unwrap_or("");
+            text.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| format!("{name}:{line}: {what} '{text}' is not a finite number"))
+        };
+        let speed = number(vn, "vn")?;
+        if speed == 0.0 {
+            return Err(format!("{name}:{line}: vn is zero (not an impact)"));
+        }
+        let w = match weight {
+            Some(index) => number(index, "weight")?,
+            None => 1.0,
+        };
+        if w <= 0.0 {
+            return Err(format!("{name}:{line}: weight must be positive"));
+        }
+        samples.push(Sample { speed: speed.abs(), restitution: number(e, "e")?, weight: w });
+    }
+    Ok(samples)
+}
+
+pub fn run(args: &FitArgs) -> Result<(), Error> {
+    let samples = read(&args.data)?;
+    let exponents = if args.free_exponents {
+        Exponents::Free { p: args.p, q: args.q }
+    } else {
+        Exponents::Fixed { p: args.p, q: args.q }
+    };
+    let report = fit(&samples, exponents).map_err(|e| format!("{}: {e}", args.data.display()))?;
+    let FitReport { params, standard_errors: se, .. } = report;
+    let out = Output {
+        k: params.k1,
+        kappa: params.kappa1,
+        vc: params.vc,
+        p: params.p,
+        q: params.q,
+        fitting_index: report.fitting_index,
+        rmse: report.rmse,
+        vc_low: report.vc_interval.0,
+        vc_high: report.vc_interval.1,
+        k_se: se.k1,
+        kappa_se: se.kappa1,
+        vc_se: se.vc,
+        p_se: se.p,
+        q_se: se.q,
+        vc_extrapolated: report.vc_extrapolated,
+        samples: report.samples,
+    };
+    match args.format {
+        Format::Json => out!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?),
+        Format::Csv => return Err("depo fit prints a table or JSON (--format json)".into()),
+        Format::Table => {
+            out!("{} samples from {}", out.samples, args.data.display());
+            out!("k      {:.6} +- {:.2e} m/s", out.k, out.k_se);
+            out!("kappa  {:.6} +- {:.2e} m/s", out.kappa, out.kappa_se);
+            out!(
+                "vc     {:.6} +- {:.2e} m/s   95 % interval [{:.6}, {:.6}]",
+                out.vc,
+                out.vc_se,
+                out.vc_low,
+                out.vc_high
+            );
+            out!("p, q   {}, {}{}", out.p, out.q, if args.free_exponents { " (fitted)" } else { " (fixed)" });
+            out!("fitting index (R^2 of e) {:.5}   RMSE {:.4}", out.fitting_index, out.rmse);
+            out!(
+                "R(vc)  {:.4}   (Eq. 14: work of adhesion at capture / (m vc^2 / 2) = R(vc)^2 = {:.4})",
+                rc(&report),
+                rc(&report).powi(2)
+            );
+        }
+    }
+    if report.vc_extrapolated {
+        eprintln!("depo: warning: the data stop above 1.5 vc; the fitted vc is an extrapolation (see its interval)");
+    }
+    if let Some(path) = &args.plot {
+        let law = WallLaw::new(params).map_err(|e| e.to_string())?;
+        let lo = samples.iter().map(|s| s.speed).fold(f64::INFINITY, f64::min).min(params.vc.max(1e-6)) * 0.8;
+        let hi = samples.iter().map(|s| s.speed).fold(0.0, f64::max) * 1.25;
+        let curve =
+            (0..200).map(|i| lo * (hi / lo).powf(i as f64 / 199.0)).map(|v| (v, law.overall_restitution(v))).collect();
+        let mut data: Vec<(f64, f64)> = samples.iter().map(|s| (s.speed, s.restitution)).collect();
+        data.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let series = [
+            Series { name: "data".into(), points: data, markers: true },
+            Series { name: "fit: e = R (1 - rho)".into(), points: curve, markers: false },
+        ];
+        plot::lines(path, "Fit of Eq. (10)", "|vn| (m/s)", "e", &series, true)?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// `R(vc)` of the fitted law (`NaN` when `vc <= 0`).
+fn rc(report: &FitReport) -> f64 {
+    let vc = report.params.vc;
+    if vc > 0.0 {
+        WallLaw::new(report.params).map_or(f64::NAN, |law| law.restitution(vc))
+    } else {
+        f64::NAN
+    }
+}
