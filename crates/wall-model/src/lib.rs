@@ -15,7 +15,8 @@
 //! - [`size`]: the capture velocity against particle diameter (Fig. 8), for polydisperse
 //!   batches that carry one capture velocity per particle.
 //! - [`fit`]: measured `(|vn|, e)` data to the law's constants by nonlinear least squares, with
-//!   uncertainties and a warning when `vc` is an extrapolation.
+//!   uncertainties and a warning when `vc` is an extrapolation; [`tilt`]: what a misaligned or
+//!   rough surface does to measured restitution (Fig. 6), and rough per-particle normals.
 //! - [`batch`]: structure-of-arrays batches borrowed from the host, per-particle
 //!   [`Outcome`]s and the [`Tally`]; [`kernel`] is the loop over a batch, one monomorphised,
 //!   vectorised variant per scene, run across cores with rayon.
@@ -52,6 +53,7 @@ pub mod power;
 pub mod presets;
 pub mod real;
 pub mod size;
+pub mod tilt;
 mod wall_law;
 
 pub use batch::{BatchError, Impacts, Normals, Outcome, Tally};
