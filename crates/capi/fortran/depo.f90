@@ -173,6 +173,18 @@ contains
     end if
   end subroutine handle
 
+  !> Reports a failure found on the Fortran side (array sizes): DEPO_ERR_INVALID to ierr, or
+  !> stops with the message when ierr is absent.
+  subroutine fail(message, ierr)
+    character(len=*), intent(in) :: message
+    integer, intent(out), optional :: ierr
+    if (present(ierr)) then
+      ierr = DEPO_ERR_INVALID
+    else
+      error stop "depo: "//message
+    end if
+  end subroutine fail
+
   !> Makes a law from its constants.
   subroutine depo_law_create(law, params, ierr)
     type(depo_law_t), intent(out) :: law
@@ -223,11 +235,8 @@ contains
 
     n = size(vx)
     if (size(vy) /= n .or. size(vz) /= n .or. size(outcome) /= n) then
-      if (present(ierr)) then
-        ierr = DEPO_ERR_INVALID
-        return
-      end if
-      error stop "depo_apply: vx, vy, vz and outcome must have the same size"
+      call fail("depo_apply: vx, vy, vz and outcome must have the same size", ierr)
+      return
     end if
     batch%n = int(n, c_size_t)
     if (n > 0) then
@@ -252,11 +261,8 @@ contains
     if (present(tally)) tally_ptr = c_loc(tally)
     if (present(capture_velocity)) then
       if (size(capture_velocity) /= n) then
-        if (present(ierr)) then
-          ierr = DEPO_ERR_INVALID
-          return
-        end if
-        error stop "depo_apply: capture_velocity must have the size of vx"
+        call fail("depo_apply: capture_velocity must have the size of vx", ierr)
+        return
       end if
       vc_ptr = c_null_ptr
       if (n > 0) vc_ptr = c_loc(capture_velocity)
@@ -276,11 +282,8 @@ contains
     integer, intent(out), optional :: ierr
     type(c_ptr) :: pd, pv
     if (size(capture_velocity) /= size(diameter)) then
-      if (present(ierr)) then
-        ierr = DEPO_ERR_INVALID
-        return
-      end if
-      error stop "depo_capture_velocities: capture_velocity must have the size of diameter"
+      call fail("depo_capture_velocities: capture_velocity must have the size of diameter", ierr)
+      return
     end if
     pd = c_null_ptr
     pv = c_null_ptr
@@ -325,11 +328,8 @@ contains
     type(c_ptr) :: po, pf, pc, pm, pd
     po = c_null_ptr; pf = c_null_ptr; pc = c_null_ptr; pm = c_null_ptr; pd = c_null_ptr
     if (size(face) /= size(outcome)) then
-      if (present(ierr)) then
-        ierr = DEPO_ERR_INVALID
-        return
-      end if
-      error stop "depo_accumulate_deposits: face must have the size of outcome"
+      call fail("depo_accumulate_deposits: face must have the size of outcome", ierr)
+      return
     end if
     if (size(outcome) > 0) then
       po = c_loc(outcome)

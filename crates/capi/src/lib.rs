@@ -62,6 +62,20 @@ pub struct DepoLawParams {
     pub mu: f64,
 }
 
+impl From<DepoLawParams> for LawParams {
+    fn from(c: DepoLawParams) -> Self {
+        let DepoLawParams { k1, k2, kappa1, kappa2, p, q, vc, mu } = c;
+        Self { k1, k2, kappa1, kappa2, p, q, vc, mu }
+    }
+}
+
+impl From<LawParams> for DepoLawParams {
+    fn from(r: LawParams) -> Self {
+        let LawParams { k1, k2, kappa1, kappa2, p, q, vc, mu } = r;
+        Self { k1, k2, kappa1, kappa2, p, q, vc, mu }
+    }
+}
+
 /// Counts of each outcome, added to by every successful `depo_apply_*` call that is given it
 /// (zero it before the first), and the energy lost by each mechanism, summed over impacts per
 /// unit particle mass (J/kg).
@@ -232,8 +246,7 @@ pub unsafe extern "C" fn depo_law_new(params: *const DepoLawParams, out: *mut *m
         if out.is_null() {
             return Err(Failure::null("out"));
         }
-        let params =
-            LawParams { k1: p.k1, k2: p.k2, kappa1: p.kappa1, kappa2: p.kappa2, p: p.p, q: p.q, vc: p.vc, mu: p.mu };
+        let params = LawParams::from(*p);
         let law = WallLaw::new(params).map_err(|e| Failure::invalid(e.to_string()))?;
         *out = Box::into_raw(Box::new(DepoWallLaw { law }));
         Ok(())
@@ -266,17 +279,7 @@ pub unsafe extern "C" fn depo_law_params(law: *const DepoWallLaw, params: *mut D
         if params.is_null() {
             return Err(Failure::null("params"));
         }
-        let p = law.law.params();
-        *params = DepoLawParams {
-            k1: p.k1,
-            k2: p.k2,
-            kappa1: p.kappa1,
-            kappa2: p.kappa2,
-            p: p.p,
-            q: p.q,
-            vc: p.vc,
-            mu: p.mu,
-        };
+        *params = DepoLawParams::from(*law.law.params());
         Ok(())
     })
 }
