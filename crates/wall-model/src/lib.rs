@@ -16,7 +16,9 @@
 //!   batches that carry one capture velocity per particle.
 //! - [`fit`]: measured `(|vn|, e)` data to the law's constants by nonlinear least squares, with
 //!   uncertainties and a warning when `vc` is an extrapolation; [`tilt`]: what a misaligned or
-//!   rough surface does to measured restitution (Fig. 6), and rough per-particle normals.
+//!   rough surface does to measured restitution (Fig. 6), and rough per-particle normals;
+//!   [`contact`]: a time-integrated sphere-wall impact (Hertz, damping, adhesion) that makes
+//!   `e(vn)` curves and capture velocities where there is no data.
 //! - [`batch`]: structure-of-arrays batches borrowed from the host, per-particle
 //!   [`Outcome`]s and the [`Tally`]; [`kernel`] is the loop over a batch, one monomorphised,
 //!   vectorised variant per scene, run across cores with rayon.
@@ -43,6 +45,7 @@
 //!   [`CaptureMode::Deposit`] for every impact; depo decides it per impact from `vc`.
 
 pub mod batch;
+pub mod contact;
 pub mod energy;
 pub mod fit;
 pub mod impact;
