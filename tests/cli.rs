@@ -207,3 +207,17 @@ fn fit_names_bad_rows_and_warns_on_extrapolation() {
         std::fs::remove_file(path).ok();
     }
 }
+
+#[test]
+fn figures_are_written() {
+    let dir = std::env::temp_dir().join(format!("depo-figures-{}", std::process::id()));
+    let out = depo(&["figures", "--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for name in ["fig6-tilt.svg", "fig8-size.svg", "e-curves.svg"] {
+        let svg = std::fs::read_to_string(dir.join(name)).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("polyline"), "{name}");
+    }
+    let fig8 = std::fs::read_to_string(dir.join("fig8-size.svg")).unwrap();
+    assert!(fig8.contains("vc ~ d^-1.51") && fig8.contains("-5/6"));
+    std::fs::remove_dir_all(dir).ok();
+}

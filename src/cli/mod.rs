@@ -11,6 +11,7 @@ macro_rules! out {
 
 mod bench;
 mod curve;
+mod figures;
 mod fit;
 mod impact;
 mod plot;
@@ -39,6 +40,8 @@ enum Command {
     Impact(impact::ImpactArgs),
     /// Fit the law's constants to measured (vn, e) data, with uncertainties.
     Fit(fit::FitArgs),
+    /// Redraw the paper's Figs. 6 and 8 and the presets' e curves as SVG files.
+    Figures(figures::FiguresArgs),
     /// Kernel throughput against a copy kernel moving the same bytes, and each kernel's error.
     Bench(bench::BenchArgs),
 }
@@ -132,6 +135,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         Command::Curve(a) => curve::run(&a),
         Command::Impact(a) => impact::run(&a),
         Command::Fit(a) => fit::run(&a),
+        Command::Figures(a) => figures::run(&a),
         Command::Bench(a) => bench::run(&a),
     }
 }

@@ -22,6 +22,21 @@ pub fn lines(
     series: &[Series],
     log_x: bool,
 ) -> Result<(), Error> {
+    chart(path, title, (x_label, y_label), series, (log_x, false))
+}
+
+/// [`lines`] with both axes logarithmic.
+pub fn log_log(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<(), Error> {
+    chart(path, title, (x_label, y_label), series, (true, true))
+}
+
+fn chart(
+    path: &Path,
+    title: &str,
+    (x_label, y_label): (&str, &str),
+    series: &[Series],
+    (log_x, log_y): (bool, bool),
+) -> Result<(), Error> {
     let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
     let xs = series.iter().flat_map(|s| s.points.iter().map(|p| p.0));
     let ys = series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
@@ -30,7 +45,11 @@ pub fn lines(
     if x0.partial_cmp(&x1) != Some(std::cmp::Ordering::Less) {
         return Err(format!("cannot draw {}: no range to plot", path.display()));
     }
-    let (y0, y1) = if y0 < y1 { (y0.min(0.0), y1 * 1.05) } else { (0.0, 1.0) };
+    let (y0, y1) = match (log_y, y0 < y1) {
+        (true, true) => (y0 / 1.5, y1 * 1.5),
+        (false, true) => (y0.min(0.0), y1 * 1.05),
+        (_, false) => (0.0, 1.0),
+    };
     let root = SVGBackend::new(path, (800, 500)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let colors = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
@@ -64,10 +83,11 @@ pub fn lines(
                 .map_err(|e| fail(&e))?;
         }};
     }
-    if log_x {
-        draw!(builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1));
-    } else {
-        draw!(builder.build_cartesian_2d(x0..x1, y0..y1));
+    match (log_x, log_y) {
+        (true, true) => draw!(builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())),
+        (true, false) => draw!(builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1)),
+        (false, true) => draw!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())),
+        (false, false) => draw!(builder.build_cartesian_2d(x0..x1, y0..y1)),
     }
     root.present().map_err(|e| fail(&e))?;
     Ok(())
