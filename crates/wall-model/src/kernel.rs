@@ -6,7 +6,8 @@
 //! uses, and each loop is compiled for AVX-512, AVX2+FMA and baseline x86-64, picked at run
 //! time (`multiversion`). The loop body calls [`crate::impact::resolve`], the same function the
 //! scalar API uses, so batch and scalar results agree bit for bit. No FMA contraction or
-//! fast-math is enabled, so the three instruction sets give identical results too.
+//! fast-math is enabled, so the three instruction sets give identical results too by
+//! construction (the tests run whichever build the machine selects: AVX2 on ours).
 //!
 //! Above [`PARALLEL_MIN`] particles the batch is halved recursively down to [`LEAF`]-sized
 //! pieces run by rayon on the current thread pool. The halving and the order in which tallies
