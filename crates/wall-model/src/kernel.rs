@@ -215,16 +215,21 @@ fn sweep<
     let mut base = 0;
     while base < len {
         let m = TALLY_BLOCK.min(len - base);
+        // 32-bit counts within a block keep the loop's lanes as narrow as f32's.
+        let mut block_counts = [0u32; 4];
         #[allow(clippy::needless_range_loop)] // one index for the particle and four scratch rows
         for j in 0..m {
             let (code, loss) = particle(base + j);
-            for (k, count) in counts.iter_mut().enumerate() {
-                *count += u64::from(code == k as u8);
+            for (k, count) in block_counts.iter_mut().enumerate() {
+                *count += u32::from(code == k as u8);
             }
             scratch[0][j] = loss.material;
             scratch[1][j] = loss.adhesion;
             scratch[2][j] = loss.friction;
             scratch[3][j] = loss.deposition;
+        }
+        for (total, block) in counts.iter_mut().zip(block_counts) {
+            *total += u64::from(block);
         }
         for (sums, block) in energy.iter_mut().zip(&scratch) {
             let chunks = block[..m].chunks_exact(LANES);
