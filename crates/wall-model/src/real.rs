@@ -33,8 +33,6 @@ pub trait Real:
     /// A large value whose square is still finite: the law clamps its denominators here so
     /// that no product of two of them overflows (1e150 for `f64`, 1e18 for `f32`).
     const BIG: Self;
-    /// Machine epsilon.
-    const EPSILON: Self;
 
     /// Rounds an `f64` to this type.
     fn from_f64(x: f64) -> Self;
@@ -137,7 +135,6 @@ impl Real for f64 {
     const HALF: Self = 0.5;
     const INFINITY: Self = f64::INFINITY;
     const BIG: Self = 1e150;
-    const EPSILON: Self = f64::EPSILON;
     const POW_TOLERANCE: f64 = 1e-12;
 
     #[inline(always)]
@@ -209,7 +206,6 @@ impl Real for f32 {
     const HALF: Self = 0.5;
     const INFINITY: Self = f32::INFINITY;
     const BIG: Self = 1e18;
-    const EPSILON: Self = f32::EPSILON;
     const POW_TOLERANCE: f64 = 4e-6;
 
     #[inline(always)]
