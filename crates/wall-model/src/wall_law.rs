@@ -137,6 +137,20 @@ impl WallLaw {
         })
     }
 
+    /// [`WallLaw::impact`] for a particle with its own capture velocity `vc` (m/s), e.g. from its
+    /// diameter with [`crate::SizeDependence`]; the other constants are the law's. Particle
+    /// trackers that call the law once per wall contact use this for polydisperse clouds.
+    #[must_use]
+    pub fn impact_with_capture_velocity(&self, v: DVec3, normal: DVec3, vc: f64) -> ImpactResult<f64> {
+        let c = &self.constants.with_capture_velocity(vc);
+        let (v, n) = (v.to_array(), normal.to_array());
+        with_powers!(self.exponents(), self.power, (c.p, c.q), |p, q| if c.mu > 0.0 {
+            resolve::<f64, _, _, false, true>(c, p, q, self.capture, v, [0.0; 3], 1.0, n)
+        } else {
+            resolve::<f64, _, _, false, false>(c, p, q, self.capture, v, [0.0; 3], 1.0, n)
+        })
+    }
+
     /// Applies the law to every particle of a batch, in place, and adds its counts and energy
     /// losses to `tally` when given.
     ///
@@ -155,5 +169,21 @@ impl WallLaw {
         if let Some(tally) = tally {
             *tally += result;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn own_capture_velocity_matches_the_law_at_its_own_vc_and_moves_the_threshold() {
+        let law = WallLaw::preset("dunn1995-stainless").unwrap().with_capture_mode(CaptureMode::Deposit);
+        let (v, n) = (DVec3::new(0.3, 0.0, -0.8), DVec3::Z);
+        let own = law.impact_with_capture_velocity(v, n, law.params().vc);
+        assert_eq!(own, law.impact(v, None, n));
+        assert!(own.velocity[2] > 0.0, "0.8 m/s is above this law's vc and rebounds");
+        let sticky = law.impact_with_capture_velocity(v, n, 1.0);
+        assert_eq!(sticky.velocity, [0.0; 3], "below a 1 m/s capture velocity the particle deposits");
     }
 }

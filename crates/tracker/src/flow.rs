@@ -1,0 +1,321 @@
+//! The air flow a particle sees: a mean velocity and, for turbulent scenes, velocity
+//! fluctuations from a stochastic model that respects the near-wall anisotropy.
+//!
+//! ## Mean flow
+//! Still air, a uniform velocity, laminar Poiseuille flow in a channel, or a turbulent
+//! channel's law-of-the-wall profile after Reichardt (1951):
+//!
+//! ```text
+//! U+ = ln(1 + 0.41 y+) / 0.41 + 7.8 (1 - exp(-y+/11) - (y+/11) exp(-y+/3))
+//! ```
+//!
+//! with `y+ = y u* / nu` the distance `y` from the nearer wall in wall units.
+//!
+//! ## Turbulent dispersion
+//! Each velocity component's fluctuation seen by a particle is `u'_i = sigma_i(y) zeta_i`,
+//! where `zeta_i` follows the *normalised* Langevin equation (a continuous random walk) of
+//! Iliopoulos & Hanratty (1999), as used for wall deposition by Dehbi (2008):
+//!
+//! ```text
+//! d zeta = -zeta dt / T_L + (d sigma / dy) dt + sqrt(2 / T_L) dW
+//! ```
+//!
+//! The drift `d sigma / dy` (along the component's own wall-normal axis) is Thomson's (1987)
+//! well-mixed condition written for `zeta`: without it, tracers drift into the low-turbulence
+//! layer at the wall and the well-mixed state is lost (a test shows both). Over a step the
+//! equation is solved exactly for frozen `sigma`, `T_L` and drift, so it is stable for any `dt`.
+//!
+//! The profiles are the fits to channel DNS used by Dehbi (2008) after Kallio & Reeks (1989),
+//! in wall units, valid to `y+ ~ 200`:
+//!
+//! ```text
+//! u+_rms = 0.4 y+ / (1 + 0.0239 y+^1.496)                   streamwise
+//! v+_rms = 0.0116 y+^2 / (1 + 0.203 y+ + 0.0014 y+^2.421)   wall-normal
+//! w+_rms = 0.19 y+ / (1 + 0.0361 y+^1.21)                   spanwise
+//! T_L+   = 10 (y+ < 5),  7.122 + 0.5731 y+ - 0.00129 y+^2  (5 <= y+ <= 200)
+//! ```
+//!
+//! **Channel**: these profiles of the distance to the nearer wall, the mean flow along `x`.
+//! **Room** (depo's own construction, as no standard model exists for a whole room): each
+//! component `i` is treated as wall-normal to the pair of walls across axis `i` and takes the
+//! wall-normal profile of its distance to them up to the profile's peak (`y+ = 67`, where
+//! `v+_rms = 1.01`); beyond it `sigma` and `T_L` blend linearly over `blend_length` into the
+//! well-mixed core's `core_rms` and `core_time`. No mean flow. The near-wall layer is what
+//! Lai & Nazaroff (2000) model; the core stands for the room's air motion, which keeps it well
+//! mixed. Tangential anisotropy near a wall (the streamwise peak) is not represented.
+//!
+//! The crossing-trajectories effect (inertial particles leaving their fluid eddies early) is
+//! not modelled: a particle sees the fluid-element time scale `T_L` whatever its inertia.
+
+/// von Karman's constant of Reichardt's profile.
+const KARMAN: f64 = 0.41;
+/// Wall units in which the room's wall-normal profile reaches its peak.
+const ROOM_PEAK_Y_PLUS: f64 = 67.0;
+/// The fits' range.
+const FIT_MAX_Y_PLUS: f64 = 200.0;
+/// Nodes of the tabulated profiles (uniform in `sqrt(y)`).
+const TABLE_NODES: usize = 4096;
+
+/// Reichardt's mean velocity `U+` at `y+`.
+#[must_use]
+pub fn reichardt(y_plus: f64) -> f64 {
+    (1.0 + KARMAN * y_plus).ln() / KARMAN
+        + 7.8 * (1.0 - (-y_plus / 11.0).exp() - (y_plus / 11.0) * (-y_plus / 3.0).exp())
+}
+
+/// Streamwise fluctuation `u+_rms(y+)` (Kallio & Reeks 1989 fit).
+#[must_use]
+pub fn streamwise_rms(y_plus: f64) -> f64 {
+    0.4 * y_plus / (1.0 + 0.0239 * y_plus.powf(1.496))
+}
+
+/// Wall-normal fluctuation `v+_rms(y+)` (Kallio & Reeks 1989 fit).
+#[must_use]
+pub fn wall_normal_rms(y_plus: f64) -> f64 {
+    0.0116 * y_plus * y_plus / (1.0 + 0.203 * y_plus + 0.0014 * y_plus.powf(2.421))
+}
+
+/// Spanwise fluctuation `w+_rms(y+)` (Kallio & Reeks 1989 fit).
+#[must_use]
+pub fn spanwise_rms(y_plus: f64) -> f64 {
+    0.19 * y_plus / (1.0 + 0.0361 * y_plus.powf(1.21))
+}
+
+/// Lagrangian integral time `T_L+(y+)` (Kallio & Reeks 1989), held at its `y+ = 200` value
+/// beyond the fit's range.
+#[must_use]
+pub fn lagrangian_time(y_plus: f64) -> f64 {
+    let y = y_plus.min(FIT_MAX_Y_PLUS);
+    if y < 5.0 {
+        10.0
+    } else {
+        7.122 + 0.5731 * y - 0.00129 * y * y
+    }
+}
+
+/// The mean flow and turbulence of a scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Flow {
+    /// Still air.
+    Still,
+    /// A uniform velocity, m/s.
+    Uniform { velocity: [f64; 3] },
+    /// Laminar channel flow along `x`, `U = 4 U_max z (H - z) / H^2` (channel only).
+    Poiseuille { max_speed: f64 },
+    /// Fully developed turbulent channel flow with friction velocity `u*` (m/s): Reichardt's
+    /// mean profile along `x` and the near-wall fluctuation model (channel only).
+    TurbulentChannel { friction_velocity: f64 },
+    /// A room with near-wall turbulence of friction velocity `u*` and a well-mixed core of
+    /// fluctuation `core_rms` (m/s per component; `sqrt(2 k / 3)` for turbulent kinetic energy
+    /// `k`) and Lagrangian time `core_time` (s), blended over `blend_length` (m).
+    TurbulentRoom { friction_velocity: f64, core_rms: f64, core_time: f64, blend_length: f64 },
+}
+
+impl Flow {
+    /// A typical indoor room: `u* = 1 cm/s`, core fluctuation 5 cm/s, core time 2 s, blended over
+    /// 0.25 m (core eddy diffusivity `sigma^2 T = 5e-3 m^2/s`).
+    #[must_use]
+    pub fn indoor_room() -> Self {
+        Flow::TurbulentRoom { friction_velocity: 0.01, core_rms: 0.05, core_time: 2.0, blend_length: 0.25 }
+    }
+
+    /// The friction velocity of a turbulent flow, m/s.
+    #[must_use]
+    pub fn friction_velocity(&self) -> Option<f64> {
+        match *self {
+            Flow::TurbulentChannel { friction_velocity } | Flow::TurbulentRoom { friction_velocity, .. } => {
+                Some(friction_velocity)
+            }
+            _ => None,
+        }
+    }
+
+    /// True when the flow has velocity fluctuations.
+    #[must_use]
+    pub fn is_turbulent(&self) -> bool {
+        self.friction_velocity().is_some()
+    }
+}
+
+/// One node of a tabulated profile.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Node {
+    /// `sigma`, m/s (or the mean velocity for a mean-flow table).
+    pub sigma: f64,
+    /// `d sigma / dy` over the cell from this node to the next, 1/s.
+    pub slope: f64,
+    /// `exp(-dt / T_L)`.
+    pub decay: f64,
+    /// `sqrt(1 - decay^2)`.
+    pub noise: f64,
+    /// `T_L (1 - decay)`, s.
+    pub drift_gain: f64,
+}
+
+/// A profile of the distance `y` to the nearer wall, tabulated once per run on nodes uniform
+/// in `sqrt(y)` (fine at the wall, where the profiles change fastest) and interpolated
+/// linearly in the hot loop.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Table {
+    inv_ds: f64,
+    nodes: Vec<Node>,
+}
+
+impl Table {
+    /// Tabulates `sigma(y)` and `T_L(y)` on `[0, y_max]` for time step `dt`.
+    fn new(y_max: f64, dt: f64, f: impl Fn(f64) -> (f64, f64)) -> Self {
+        let ds = y_max.sqrt() / (TABLE_NODES - 1) as f64;
+        let ys: Vec<f64> = (0..TABLE_NODES).map(|i| (i as f64 * ds).powi(2)).collect();
+        let mut nodes: Vec<Node> = ys
+            .iter()
+            .map(|&y| {
+                let (sigma, t) = f(y);
+                let decay = if t > 0.0 { (-dt / t).exp() } else { 0.0 };
+                Node {
+                    sigma,
+                    slope: 0.0,
+                    decay,
+                    noise: (1.0 - decay * decay).max(0.0).sqrt(),
+                    drift_gain: t * (1.0 - decay),
+                }
+            })
+            .collect();
+        for i in 0..TABLE_NODES - 1 {
+            nodes[i].slope = (nodes[i + 1].sigma - nodes[i].sigma) / (ys[i + 1] - ys[i]);
+        }
+        Self { inv_ds: 1.0 / ds, nodes }
+    }
+
+    /// The profile at distance `y >= 0` (m), clamped to the table's range.
+    #[inline(always)]
+    pub fn at(&self, y: f64) -> Node {
+        let s = y.max(0.0).sqrt() * self.inv_ds;
+        let last = self.nodes.len() - 2;
+        let i = (s as usize).min(last);
+        let f = (s - i as f64).min(1.0);
+        let (a, b) = (self.nodes[i], self.nodes[i + 1]);
+        Node {
+            sigma: a.sigma + f * (b.sigma - a.sigma),
+            slope: a.slope,
+            decay: a.decay + f * (b.decay - a.decay),
+            noise: a.noise + f * (b.noise - a.noise),
+            drift_gain: a.drift_gain + f * (b.drift_gain - a.drift_gain),
+        }
+    }
+}
+
+/// One fluctuating component: its profile, the axis whose walls it is measured from, and
+/// whether it carries the well-mixed drift (the wall-normal one).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Component {
+    pub table: Table,
+    pub axis: usize,
+    pub drift: bool,
+}
+
+/// A scene's flow prepared for a time step: mean flow and turbulence as tables.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct FlowField {
+    /// A constant part of the mean velocity, m/s.
+    pub uniform: [f64; 3],
+    /// A mean velocity along `x` that varies with the distance from the `z` walls.
+    pub profile: Option<Table>,
+    /// The three fluctuating components, when turbulent.
+    pub turbulence: Option<[Component; 3]>,
+}
+
+impl FlowField {
+    /// Tabulates `flow` for a domain of `size` (m), kinematic viscosity `nu` (m^2/s) and step
+    /// `dt` (s). `drift_correction = false` drops the well-mixed drift (for comparison only).
+    pub fn new(flow: &Flow, size: [f64; 3], nu: f64, dt: f64, drift_correction: bool) -> Self {
+        let half = size.map(|l| 0.5 * l);
+        let mut field = FlowField { uniform: [0.0; 3], profile: None, turbulence: None };
+        match *flow {
+            Flow::Still => {}
+            Flow::Uniform { velocity } => field.uniform = velocity,
+            Flow::Poiseuille { max_speed } => {
+                let h = size[2];
+                field.profile = Some(Table::new(half[2], dt, |y| (4.0 * max_speed * y * (h - y) / (h * h), 0.0)));
+            }
+            Flow::TurbulentChannel { friction_velocity: us } => {
+                let plus = us / nu;
+                let time = nu / (us * us);
+                field.profile = Some(Table::new(half[2], dt, |y| (us * reichardt(y * plus), 0.0)));
+                let comp = |rms: fn(f64) -> f64, drift: bool| Component {
+                    table: Table::new(half[2], dt, |y| (us * rms(y * plus), time * lagrangian_time(y * plus))),
+                    axis: 2,
+                    drift: drift && drift_correction,
+                };
+                field.turbulence =
+                    Some([comp(streamwise_rms, false), comp(spanwise_rms, false), comp(wall_normal_rms, true)]);
+            }
+            Flow::TurbulentRoom { friction_velocity: us, core_rms, core_time, blend_length } => {
+                let plus = us / nu;
+                let time = nu / (us * us);
+                let y_peak = ROOM_PEAK_Y_PLUS / plus;
+                let (sigma_peak, t_peak) =
+                    (us * wall_normal_rms(ROOM_PEAK_Y_PLUS), time * lagrangian_time(ROOM_PEAK_Y_PLUS));
+                let profile = move |y: f64| {
+                    if y <= y_peak {
+                        (us * wall_normal_rms(y * plus), time * lagrangian_time(y * plus))
+                    } else {
+                        let f = ((y - y_peak) / blend_length).min(1.0);
+                        (sigma_peak + f * (core_rms - sigma_peak), t_peak + f * (core_time - t_peak))
+                    }
+                };
+                let y_max = half.iter().copied().fold(0.0, f64::max);
+                let comp = |axis| Component { table: Table::new(y_max, dt, profile), axis, drift: drift_correction };
+                field.turbulence = Some([comp(0), comp(1), comp(2)]);
+            }
+        }
+        field
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wall_functions_have_their_textbook_limits() {
+        // Viscous sublayer U+ = y+ and the log law U+ = ln(y+)/0.41 + 5.5 far out.
+        assert!((reichardt(0.5) - 0.5).abs() < 0.01, "{}", reichardt(0.5));
+        assert!((reichardt(1000.0) - (1000f64.ln() / 0.41 + 5.5)).abs() < 0.3, "{}", reichardt(1000.0));
+        // Fluctuations vanish at the wall, wall-normal fastest (~ y+^2).
+        assert_eq!(wall_normal_rms(0.0), 0.0);
+        assert!((wall_normal_rms(1e-3) / 1e-6 - 0.0116).abs() < 1e-3);
+        // Streamwise peak near y+ = 20-30 of about 2.5 u*.
+        let peak = (1..200).map(|y| streamwise_rms(f64::from(y))).fold(0.0, f64::max);
+        assert!((2.3..2.6).contains(&peak), "{peak}");
+        assert!((wall_normal_rms(ROOM_PEAK_Y_PLUS) - 1.011).abs() < 1e-3);
+        assert_eq!(lagrangian_time(1.0), 10.0);
+        assert_eq!(lagrangian_time(500.0), lagrangian_time(200.0));
+    }
+
+    #[test]
+    fn table_interpolates_within_a_cell_and_clamps_outside() {
+        let t = Table::new(1.0, 0.1, |y| (y * y, 1.0));
+        for y in [0.0, 1e-6, 0.01, 0.3, 0.999] {
+            assert!((t.at(y).sigma - y * y).abs() < 1e-5, "{y}");
+            assert!((t.at(y).slope - 2.0 * y).abs() < 2e-3, "{y}: {}", t.at(y).slope);
+        }
+        assert!((t.at(5.0).sigma - 1.0).abs() < 1e-3);
+        let n = t.at(0.5);
+        assert!((n.decay - (-0.1f64).exp()).abs() < 1e-12);
+        assert!((n.noise - (1.0 - n.decay * n.decay).sqrt()).abs() < 1e-12);
+        assert!((n.drift_gain - (1.0 - n.decay)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn room_profile_joins_the_core_continuously() {
+        let flow = Flow::indoor_room();
+        let field = FlowField::new(&flow, [4.0, 4.0, 3.0], 1.5e-5, 0.1, true);
+        let comp = &field.turbulence.as_ref().unwrap()[2];
+        let y_peak = ROOM_PEAK_Y_PLUS * 1.5e-5 / 0.01;
+        let below = comp.table.at(y_peak * 0.999).sigma;
+        let above = comp.table.at(y_peak * 1.001).sigma;
+        assert!((below - above).abs() < 1e-4, "{below} {above}");
+        assert!((comp.table.at(1.5).sigma - 0.05).abs() < 1e-9);
+        assert!(comp.table.at(1e-4).sigma < 1e-4);
+    }
+}

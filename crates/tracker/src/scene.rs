@@ -1,0 +1,257 @@
+//! A scene: geometry, air, flow, forces, walls, time stepping, and the particles injected into
+//! it. Everything is checked once, in [`Scene::validate`]; the hot loop trusts it.
+
+use std::fmt;
+
+use depo_wall_model::{SizeDependence, WallLaw};
+
+use crate::air::{Air, STANDARD_GRAVITY};
+use crate::flow::Flow;
+use crate::geometry::Geometry;
+
+/// What a wall does with a particle that touches it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WallBehaviour {
+    /// Every contact deposits: the perfect sink that deposition-velocity theories assume.
+    Sink,
+    /// Specular reflection, fluid fluctuation mirrored too: a symmetry plane (and the way to
+    /// check that tracers stay well mixed).
+    Reflect,
+    /// The Brach & Dunn law decides: rebound or capture. With `size`, each particle's capture
+    /// velocity follows its diameter ([`SizeDependence`], anchored at the law's own `vc`).
+    /// Spin is not tracked by the tracker; friction acts through the law's `mu`.
+    Law { law: WallLaw, size: Option<SizeDependence> },
+}
+
+/// The drag law.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Drag {
+    /// Stokes drag with the Cunningham slip correction. The default.
+    #[default]
+    Stokes,
+    /// Stokes drag times the Schiller-Naumann factor `1 + 0.15 Re_p^0.687`, evaluated at the
+    /// start of each step (costs an `exp` and a `powf` per particle-step).
+    SchillerNaumann,
+}
+
+/// How a step is integrated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Scheme {
+    /// The drag relaxation solved exactly over the step for the fluid velocity seen at its start
+    /// (and the Brownian increments sampled exactly): stable for any `dt / tau`. The default.
+    #[default]
+    Exponential,
+    /// Explicit (forward) Euler, for comparison: first order, unstable for `dt > 2 tau`.
+    Euler,
+}
+
+/// Particle sizes at injection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SizeDistribution {
+    /// One diameter, m.
+    Monodisperse { diameter: f64 },
+    /// Lognormal number distribution with count median diameter `median` (m) and geometric
+    /// standard deviation `geometric_sd` (>= 1).
+    LogNormal { median: f64, geometric_sd: f64 },
+}
+
+/// The particles put into a scene at `t = 0`: uniformly over the domain (or `region`), at the
+/// local mean-flow velocity plus their settling velocity (plus a thermal velocity with Brownian
+/// motion and a fluctuation drawn from the stationary distribution in turbulence).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Injection {
+    /// Number of particles.
+    pub count: usize,
+    /// Their sizes.
+    pub size: SizeDistribution,
+    /// Particle material density, kg/m^3.
+    pub density: f64,
+    /// A box `(low, high)` corners in m, inside the domain; `None` for the whole domain.
+    pub region: Option<([f64; 3], [f64; 3])>,
+}
+
+/// Everything about a run but its particles.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The domain.
+    pub geometry: Geometry,
+    /// The carrier gas.
+    pub air: Air,
+    /// Gravity, m/s^2 (a room's is `[0, 0, -9.807]`; zero turns settling off).
+    pub gravity: [f64; 3],
+    /// Mean flow and turbulence.
+    pub flow: Flow,
+    /// Brownian motion on or off.
+    pub brownian: bool,
+    /// The drag law.
+    pub drag: Drag,
+    /// One behaviour per wall, in the order of [`Geometry::walls`].
+    pub walls: Vec<WallBehaviour>,
+    /// The integrator.
+    pub scheme: Scheme,
+    /// Time step, s.
+    pub dt: f64,
+    /// Simulated time, s (rounded up to whole steps).
+    pub duration: f64,
+    /// Seed of the per-particle random streams.
+    pub seed: u64,
+    /// Keep the well-mixed drift of the dispersion model (on by default; off only to show what
+    /// it is for).
+    pub drift_correction: bool,
+}
+
+impl Scene {
+    /// A scene with standard air, gravity along `-z` and every wall a perfect sink; still air,
+    /// no Brownian motion, Stokes drag, the exponential scheme.
+    #[must_use]
+    pub fn new(geometry: Geometry, dt: f64, duration: f64) -> Self {
+        let walls = vec![WallBehaviour::Sink; geometry.walls().len()];
+        Self {
+            geometry,
+            air: Air::standard(),
+            gravity: [0.0, 0.0, -STANDARD_GRAVITY],
+            flow: Flow::Still,
+            brownian: false,
+            drag: Drag::Stokes,
+            walls,
+            scheme: Scheme::Exponential,
+            dt,
+            duration,
+            seed: 1,
+            drift_correction: true,
+        }
+    }
+
+    /// Sets every wall to `behaviour`.
+    #[must_use]
+    pub fn with_walls(mut self, behaviour: WallBehaviour) -> Self {
+        self.walls = vec![behaviour; self.geometry.walls().len()];
+        self
+    }
+
+    /// Number of steps the run takes.
+    #[must_use]
+    pub fn steps(&self) -> usize {
+        ((self.duration / self.dt) - 1e-9).ceil().max(0.0) as usize
+    }
+
+    /// Checks the scene and the injection; the error names the first offending field.
+    pub fn validate(&self, injection: &Injection) -> Result<(), SceneError> {
+        let size = self.geometry.size();
+        for (name, l) in ["size.x", "size.y", "size.z"].iter().zip(size) {
+            positive(name, l)?;
+        }
+        positive("air.temperature", self.air.temperature)?;
+        positive("air.pressure", self.air.pressure)?;
+        positive("air.density", self.air.density)?;
+        positive("air.viscosity", self.air.viscosity)?;
+        for g in self.gravity {
+            finite("gravity", g)?;
+        }
+        positive("dt", self.dt)?;
+        if !(self.duration.is_finite() && self.duration >= 0.0) {
+            return Err(SceneError::new("duration", self.duration, "must be finite and not negative"));
+        }
+        if self.walls.len() != self.geometry.walls().len() {
+            return Err(SceneError::new("walls", self.walls.len() as f64, "must give one behaviour per wall"));
+        }
+        let channel = matches!(self.geometry, Geometry::Channel { .. });
+        match self.flow {
+            Flow::Still => {}
+            Flow::Uniform { velocity } => {
+                for v in velocity {
+                    finite("flow.velocity", v)?;
+                }
+            }
+            Flow::Poiseuille { max_speed } => {
+                finite("flow.max_speed", max_speed)?;
+                if !channel {
+                    return Err(SceneError::new("flow", max_speed, "Poiseuille flow needs a channel"));
+                }
+            }
+            Flow::TurbulentChannel { friction_velocity } => {
+                positive("flow.friction_velocity", friction_velocity)?;
+                if !channel {
+                    return Err(SceneError::new("flow", friction_velocity, "a turbulent channel flow needs a channel"));
+                }
+            }
+            Flow::TurbulentRoom { friction_velocity, core_rms, core_time, blend_length } => {
+                positive("flow.friction_velocity", friction_velocity)?;
+                positive("flow.core_rms", core_rms)?;
+                positive("flow.core_time", core_time)?;
+                positive("flow.blend_length", blend_length)?;
+            }
+        }
+        if injection.count == 0 {
+            return Err(SceneError::new("particles.count", 0.0, "must be at least 1"));
+        }
+        positive("particles.density", injection.density)?;
+        let largest = match injection.size {
+            SizeDistribution::Monodisperse { diameter } => {
+                positive("particles.diameter", diameter)?;
+                diameter
+            }
+            SizeDistribution::LogNormal { median, geometric_sd } => {
+                positive("particles.median", median)?;
+                if !(geometric_sd.is_finite() && geometric_sd >= 1.0) {
+                    return Err(SceneError::new("particles.geometric_sd", geometric_sd, "must be finite and >= 1"));
+                }
+                // Sizes are drawn up to 5 geometric standard deviations out.
+                median * geometric_sd.powi(5)
+            }
+        };
+        let smallest = size.iter().copied().fold(f64::INFINITY, f64::min);
+        if largest >= 0.5 * smallest {
+            return Err(SceneError::new("particles.diameter", largest, "must be smaller than half the domain"));
+        }
+        if let Some((lo, hi)) = injection.region {
+            for a in 0..3 {
+                if !(lo[a].is_finite() && hi[a].is_finite() && 0.0 <= lo[a] && lo[a] <= hi[a] && hi[a] <= size[a]) {
+                    return Err(SceneError::new("particles.region", lo[a], "must be a box inside the domain"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+fn finite(field: &str, v: f64) -> Result<(), SceneError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(SceneError::new(field, v, "must be finite"))
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<(), SceneError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError::new(field, v, "must be finite and positive"))
+    }
+}
+
+/// A scene value out of range.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneError {
+    /// The field, as a scene file names it (`flow.friction_velocity`).
+    pub field: String,
+    /// Its value.
+    pub value: f64,
+    /// What it must be.
+    pub requirement: &'static str,
+}
+
+impl SceneError {
+    fn new(field: &str, value: f64, requirement: &'static str) -> Self {
+        Self { field: field.to_string(), value, requirement }
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "`{}` = {} {}", self.field, self.value, self.requirement)
+    }
+}
+
+impl std::error::Error for SceneError {}

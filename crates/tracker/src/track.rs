@@ -1,0 +1,670 @@
+//! One particle through a whole run: the step (drag relaxation, gravity, Brownian motion,
+//! turbulent dispersion), the wall contacts within a step, and the particle's fate.
+//!
+//! ## The step
+//! Over a step `dt` the fluid velocity seen, `u_f = U(x) + sigma(x) zeta`, is frozen at its
+//! start. With drag relaxation time `tau` and settling velocity `v_s = tau g (1 - rho/rho_p)`
+//! the particle relaxes to `v_inf = u_f + v_s`. The [`Scheme::Exponential`] step is the exact
+//! solution of `dv/dt = (v_inf - v) / tau`:
+//!
+//! ```text
+//! v(t) = v_inf + (v0 - v_inf) exp(-t / tau)
+//! x(t) = x0 + v_inf t + (v0 - v_inf) tau (1 - exp(-t / tau))
+//! ```
+//!
+//! exact for any `dt / tau` (a tracer, `tau -> 0`, moves with `u_f`). Brownian motion adds the
+//! exact Ornstein-Uhlenbeck increments of velocity and position over the step (Chandrasekhar
+//! 1943): with `h = dt / tau` and thermal variance `kT/m`,
+//!
+//! ```text
+//! var v = kT/m (1 - e^-2h),  var x = kT/m tau^2 (2h - 3 + 4 e^-h - e^-2h),
+//! cov(x, v) = kT/m tau (1 - e^-h)^2
+//! ```
+//!
+//! so the mean-square displacement is `2 D t` with `D = kT tau / m`, the Stokes-Einstein value.
+//! [`Scheme::Euler`] is forward Euler (Euler-Maruyama with Brownian motion), for comparison.
+//!
+//! ## Wall contacts
+//! When a step ends with the sphere through a wall plane (centre closer than its radius), the
+//! contact time is found on the step's own trajectory by bisection, the particle is moved
+//! there, and the wall acts: a sink deposits it, a reflecting wall mirrors it, the Brach & Dunn
+//! law rebounds or captures it (see `WallBehaviour`). A rebounding particle flies on for the
+//! rest of the step, with as many contacts as it meets (a particle still bouncing after
+//! [`MAX_CONTACTS`] contacts in one step has come to rest on the wall and is deposited there).
+//! The Brownian increments are spread evenly over the step up to the first contact; what is left
+//! of them after a rebound is dropped. The normal velocity handed to the law is the inward
+//! normal speed on the trajectory at contact (with Brownian motion its sign is taken as inward:
+//! the trajectory did cross the plane).
+
+use depo_wall_model::energy::{energy_loss, EnergyLoss};
+use glam::DVec3;
+use rand::rngs::Xoshiro256PlusPlus;
+use rand::{Rng, RngExt, SeedableRng};
+use rand_distr::StandardNormal;
+
+use crate::air::{schiller_naumann, Aerodynamics};
+use crate::flow::FlowField;
+use crate::geometry::Wall;
+use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
+
+/// Contacts allowed in one step before a bouncing particle counts as resting on the wall.
+pub const MAX_CONTACTS: usize = 32;
+/// Bisection steps for a contact time (to well below 1e-12 of the step).
+const BISECTIONS: usize = 48;
+
+/// What became of a particle by the end of the run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Fate {
+    /// Still in the air.
+    Airborne,
+    /// Deposited on the wall with this id.
+    Deposited(usize),
+    /// Lost to the statistics: a non-finite state or a contact the wall law flagged invalid.
+    Escaped,
+}
+
+/// One particle's history in brief.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Record {
+    /// Its fate.
+    pub fate: Fate,
+    /// When it was deposited or escaped; the end of the run for an airborne particle, s.
+    pub time: f64,
+    /// Where it was injected, m.
+    pub start: [f64; 3],
+    /// Where it was deposited, or where it is at the end of the run, m.
+    pub position: [f64; 3],
+    /// Diameter, m.
+    pub diameter: f64,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Steps it was tracked for.
+    pub steps: u64,
+}
+
+/// A wall's impact statistics.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WallTally {
+    /// Contacts with the wall.
+    pub contacts: u64,
+    /// Contacts that ended in a rebound (or reflection).
+    pub rebounds: u64,
+    /// Contacts that ended in deposition (the sink, or the law's capture).
+    pub captures: u64,
+    /// Particles deposited because they were still bouncing after [`MAX_CONTACTS`] contacts
+    /// in one step (at rest on the wall; not counted as captures).
+    pub resting: u64,
+    /// Energy lost at the wall by mechanism, J (the wall law's budget times particle mass).
+    pub energy: EnergyLoss<f64>,
+}
+
+impl std::ops::AddAssign for WallTally {
+    fn add_assign(&mut self, o: Self) {
+        self.contacts += o.contacts;
+        self.rebounds += o.rebounds;
+        self.captures += o.captures;
+        self.resting += o.resting;
+        self.energy += o.energy;
+    }
+}
+
+/// The scene prepared for tracking: tabulated flow, walls, per-run constants.
+pub(crate) struct Prepared<'a> {
+    pub scene: &'a Scene,
+    pub injection: &'a Injection,
+    pub field: FlowField,
+    pub walls: Vec<Wall>,
+    pub size: [f64; 3],
+    pub walled: [bool; 3],
+    pub steps: usize,
+}
+
+impl<'a> Prepared<'a> {
+    pub fn new(scene: &'a Scene, injection: &'a Injection) -> Self {
+        let size = scene.geometry.size();
+        let nu = scene.air.kinematic_viscosity();
+        Self {
+            scene,
+            injection,
+            field: FlowField::new(&scene.flow, size, nu, scene.dt, scene.drift_correction),
+            walls: scene.geometry.walls(),
+            size,
+            walled: scene.geometry.walled(),
+            steps: scene.steps(),
+        }
+    }
+}
+
+/// The per-particle constants of a run.
+#[derive(Clone, Copy, Debug)]
+struct Body {
+    aero: Aerodynamics,
+    radius: f64,
+    /// Settling velocity vector `tau g (1 - rho/rho_p)`, m/s.
+    settling: DVec3,
+    /// `exp(-dt / tau)`.
+    decay: f64,
+    /// `tau (1 - exp(-dt / tau))`, s.
+    relax: f64,
+    /// Brownian step: `x = sx a`, `v = cxv a + sv b` for standard normals `a, b`.
+    brownian: [f64; 3],
+    /// Thermal velocity variance per axis `kT/m`, m^2/s^2.
+    thermal_variance: f64,
+}
+
+/// `(sx, cxv, sv)` of the exact Brownian step for `h = dt / tau` and thermal variance `kt_m`.
+fn brownian_coefficients(h: f64, tau: f64, kt_m: f64) -> [f64; 3] {
+    if !(h.is_finite() && tau > 0.0) {
+        // Over-damped limit: position only, variance 2 D dt = 2 kT/m tau dt.
+        let sx = (2.0 * kt_m * tau * tau * h).sqrt();
+        return [sx, 0.0, kt_m.sqrt()];
+    }
+    let one_minus = -(-h).exp_m1();
+    // 2h - 3 + 4 e^-h - e^-2h, by its series (to h^7) where the formula cancels.
+    let shape = if h < 0.05 {
+        h * h * h * (2.0 / 3.0 - h * (0.5 - h * (7.0 / 30.0 - h * (1.0 / 12.0 - h * 31.0 / 1260.0))))
+    } else {
+        2.0 * h - 3.0 + 4.0 * (-h).exp() - (-2.0 * h).exp()
+    };
+    let var_x = kt_m * tau * tau * shape;
+    let var_v = kt_m * one_minus * (2.0 - one_minus);
+    let cov = kt_m * tau * one_minus * one_minus;
+    let sx = var_x.sqrt();
+    let cxv = if sx > 0.0 { cov / sx } else { 0.0 };
+    let sv = (var_v - cxv * cxv).max(0.0).sqrt();
+    [sx, cxv, sv]
+}
+
+impl Body {
+    fn new(p: &Prepared<'_>, diameter: f64, tau_scale: f64) -> Self {
+        let scene = p.scene;
+        let g = DVec3::from_array(scene.gravity);
+        let aero = Aerodynamics::new(diameter, p.injection.density, &scene.air, g.length());
+        let tau = aero.relaxation_time / tau_scale;
+        let buoyancy = 1.0 - scene.air.density / p.injection.density;
+        let h = scene.dt / tau;
+        let decay = (-h).exp();
+        let kt = aero.thermal_variance(&scene.air);
+        Self {
+            aero,
+            radius: 0.5 * diameter,
+            settling: g * (tau * buoyancy),
+            decay,
+            relax: tau * -(-h).exp_m1(),
+            brownian: brownian_coefficients(h, tau, kt),
+            thermal_variance: kt,
+        }
+    }
+
+    fn tau(&self) -> f64 {
+        self.relax / (1.0 - self.decay)
+    }
+}
+
+/// A random stream per particle: the same particle draws the same numbers whatever thread
+/// runs it.
+pub(crate) fn particle_rng(seed: u64, id: u64) -> Xoshiro256PlusPlus {
+    Xoshiro256PlusPlus::seed_from_u64(splitmix(seed ^ splitmix(id.wrapping_add(0x5851_f42d_4c95_7f2d))))
+}
+
+/// SplitMix64's finaliser: a bijective mix of 64 bits.
+fn splitmix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+#[inline(always)]
+fn normal(rng: &mut impl Rng) -> f64 {
+    rng.sample(StandardNormal)
+}
+
+/// Distance to the nearer wall across `axis` and the sign of `d(distance)/d(coordinate)`.
+#[inline(always)]
+fn wall_distance(c: f64, length: f64) -> (f64, f64) {
+    let upper = length - c;
+    if c <= upper {
+        (c, 1.0)
+    } else {
+        (upper, -1.0)
+    }
+}
+
+/// The particle's state between steps.
+#[derive(Clone, Copy, Debug)]
+struct State {
+    x: DVec3,
+    v: DVec3,
+    zeta: [f64; 3],
+}
+
+/// Tracks particle `id` through the run, adding its wall contacts to `tally`.
+pub(crate) fn track(p: &Prepared<'_>, id: u64, tally: &mut [WallTally]) -> Record {
+    let scene = p.scene;
+    let brown = scene.brownian;
+    let turb = p.field.turbulence.is_some();
+    let finite_re = scene.drag == Drag::SchillerNaumann;
+    let euler = scene.scheme == Scheme::Euler;
+    // One monomorphised loop per combination of what the scene needs, chosen once per particle.
+    macro_rules! dispatch {
+        ($($a:literal $b:literal $c:literal $d:literal),*) => {
+            match (brown, turb, finite_re, euler) {
+                $(($a, $b, $c, $d) => run_particle::<$a, $b, $c, $d>(p, id, tally),)*
+            }
+        };
+    }
+    dispatch!(
+        false false false false, true false false false, false true false false, true true false false,
+        false false true false, true false true false, false true true false, true true true false,
+        false false false true, true false false true, false true false true, true true false true,
+        false false true true, true false true true, false true true true, true true true true
+    )
+}
+
+fn sample_diameter(size: SizeDistribution, rng: &mut impl Rng) -> f64 {
+    match size {
+        SizeDistribution::Monodisperse { diameter } => diameter,
+        SizeDistribution::LogNormal { median, geometric_sd } => {
+            // Truncated at 5 geometric standard deviations, as Scene::validate assumes.
+            let z: f64 = normal(rng).clamp(-5.0, 5.0);
+            median * (z * geometric_sd.ln()).exp()
+        }
+    }
+}
+
+fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool>(
+    p: &Prepared<'_>,
+    id: u64,
+    tally: &mut [WallTally],
+) -> Record {
+    let scene = p.scene;
+    let field = &p.field;
+    let dt = scene.dt;
+    let nu = scene.air.kinematic_viscosity();
+    let mut rng = particle_rng(scene.seed, id);
+
+    // Injection.
+    let diameter = sample_diameter(p.injection.size, &mut rng);
+    let mut body = Body::new(p, diameter, 1.0);
+    let r = body.radius;
+    let (lo, hi) = p.injection.region.unwrap_or(([0.0; 3], p.size));
+    let mut start = [0.0; 3];
+    for a in 0..3 {
+        let (l, h) = if p.walled[a] { (lo[a].max(r), hi[a].min(p.size[a] - r)) } else { (lo[a], hi[a]) };
+        start[a] = if h > l { rng.random_range(l..h) } else { 0.5 * (l + h) };
+    }
+    let mut s = State { x: DVec3::from_array(start), v: DVec3::ZERO, zeta: [0.0; 3] };
+    if TURB {
+        s.zeta = [normal(&mut rng), normal(&mut rng), normal(&mut rng)];
+    }
+    s.v = fluid_velocity::<TURB>(field, p.size, s.x, &s.zeta) + body.settling;
+    if BROWN {
+        let sd = body.thermal_variance.sqrt();
+        s.v += DVec3::new(normal(&mut rng), normal(&mut rng), normal(&mut rng)) * sd;
+    }
+    let base = body;
+
+    let mass = body.aero.mass;
+    let record = |fate: Fate, time: f64, x: DVec3, steps: u64| Record {
+        fate,
+        time,
+        start,
+        position: x.to_array(),
+        diameter,
+        mass,
+        steps,
+    };
+
+    for n in 0..p.steps {
+        let t0 = n as f64 * dt;
+        let uf = fluid_velocity::<TURB>(field, p.size, s.x, &s.zeta);
+        if TURB {
+            advance_fluctuation(field, p.size, s.x, &mut s.zeta, &mut rng);
+        }
+        if FINITE_RE {
+            let re = (uf - s.v).length() * diameter / nu;
+            body = Body::new(p, diameter, schiller_naumann(re));
+            // Thermal variance does not depend on drag; keep the injected one.
+            body.thermal_variance = base.thermal_variance;
+        }
+        let v_inf = uf + body.settling;
+        let (bx, bv) = if BROWN {
+            let mut bx = DVec3::ZERO;
+            let mut bv = DVec3::ZERO;
+            for a in 0..3 {
+                let (za, zb) = (normal(&mut rng), normal(&mut rng));
+                if EULER {
+                    // Euler-Maruyama: velocity kick of variance 2 kT/m dt/tau; position from v.
+                    bv[a] = (2.0 * body.thermal_variance * dt / body.tau()).sqrt() * za;
+                } else {
+                    bx[a] = body.brownian[0] * za;
+                    bv[a] = body.brownian[1] * za + body.brownian[2] * zb;
+                }
+            }
+            (bx, bv)
+        } else {
+            (DVec3::ZERO, DVec3::ZERO)
+        };
+        let flight = Flight::<EULER> {
+            x0: s.x,
+            v0: s.v,
+            v_inf,
+            tau: body.tau(),
+            decay: body.decay,
+            relax: body.relax,
+            dt,
+            bx,
+            bv,
+        };
+        let (x1, v1) = flight.end();
+        if inside(x1, r, p) {
+            s.x = wrap(x1, p);
+            s.v = v1;
+            if !(s.x.is_finite() && s.v.is_finite()) {
+                return record(Fate::Escaped, t0 + dt, s.x, n as u64 + 1);
+            }
+            continue;
+        }
+        match contacts::<EULER>(p, &body, flight, &mut s, tally) {
+            None => {}
+            Some((fate, t, x)) => return record(fate, t0 + t, x, n as u64 + 1),
+        }
+    }
+    record(Fate::Airborne, p.steps as f64 * dt, s.x, p.steps as u64)
+}
+
+/// The mean flow plus the fluctuation `sigma zeta` at `x`.
+#[inline(always)]
+fn fluid_velocity<const TURB: bool>(field: &FlowField, size: [f64; 3], x: DVec3, zeta: &[f64; 3]) -> DVec3 {
+    let mut u = DVec3::from_array(field.uniform);
+    if let Some(profile) = &field.profile {
+        u.x += profile.at(wall_distance(x.z, size[2]).0).sigma;
+    }
+    if TURB {
+        if let Some(turb) = &field.turbulence {
+            for (a, comp) in turb.iter().enumerate() {
+                let (d, _) = wall_distance(x[comp.axis], size[comp.axis]);
+                u[a] += comp.table.at(d).sigma * zeta[a];
+            }
+        }
+    }
+    u
+}
+
+/// One exact Ornstein-Uhlenbeck step of the normalised fluctuations at `x`.
+#[inline(always)]
+fn advance_fluctuation(field: &FlowField, size: [f64; 3], x: DVec3, zeta: &mut [f64; 3], rng: &mut impl Rng) {
+    if let Some(turb) = &field.turbulence {
+        for (a, comp) in turb.iter().enumerate() {
+            let (d, sign) = wall_distance(x[comp.axis], size[comp.axis]);
+            let node = comp.table.at(d);
+            let drift = if comp.drift { sign * node.slope * node.drift_gain } else { 0.0 };
+            zeta[a] = zeta[a] * node.decay + drift + node.noise * normal(rng);
+        }
+    }
+}
+
+/// The trajectory of one (part of a) step.
+#[derive(Clone, Copy, Debug)]
+struct Flight<const EULER: bool> {
+    x0: DVec3,
+    v0: DVec3,
+    v_inf: DVec3,
+    tau: f64,
+    decay: f64,
+    relax: f64,
+    /// Length of the whole step this flight belongs to, s (the Brownian share is `t / dt`).
+    dt: f64,
+    bx: DVec3,
+    bv: DVec3,
+}
+
+impl<const EULER: bool> Flight<EULER> {
+    /// Position and velocity at the end of the full step.
+    #[inline(always)]
+    fn end(&self) -> (DVec3, DVec3) {
+        if EULER {
+            let x = self.x0 + self.v0 * self.dt + self.bx;
+            let v = self.v0 + (self.v_inf - self.v0) * (self.dt / self.tau) + self.bv;
+            (x, v)
+        } else {
+            let dv = self.v0 - self.v_inf;
+            (self.x0 + self.v_inf * self.dt + dv * self.relax + self.bx, self.v_inf + dv * self.decay + self.bv)
+        }
+    }
+
+    /// Position and velocity `t` (s, `0 < t <= dt`) into the flight.
+    fn at(&self, t: f64) -> (DVec3, DVec3) {
+        let share = t / self.dt;
+        if EULER {
+            let (_, v1) = self.end();
+            (self.x0 + (self.v0 * self.dt + self.bx) * share, self.v0 + (v1 - self.v0) * share)
+        } else {
+            let e = (-t / self.tau).exp();
+            let dv = self.v0 - self.v_inf;
+            let relax = if self.tau > 0.0 { self.tau * (1.0 - e) } else { 0.0 };
+            (self.x0 + self.v_inf * t + dv * relax + self.bx * share, self.v_inf + dv * e + self.bv * share)
+        }
+    }
+
+    /// The same trajectory restarted at `x, v` for the remaining `left` seconds, without the
+    /// Brownian increments.
+    fn restart(&self, x: DVec3, v: DVec3, left: f64) -> Self {
+        let (decay, relax) = if self.tau > 0.0 {
+            let h = left / self.tau;
+            ((-h).exp(), self.tau * -(-h).exp_m1())
+        } else {
+            (0.0, 0.0)
+        };
+        Self { x0: x, v0: v, decay, relax, dt: left, bx: DVec3::ZERO, bv: DVec3::ZERO, ..*self }
+    }
+}
+
+#[inline(always)]
+fn inside(x: DVec3, r: f64, p: &Prepared<'_>) -> bool {
+    let mut ok = true;
+    for a in 0..3 {
+        if p.walled[a] {
+            ok &= x[a] >= r && x[a] <= p.size[a] - r;
+        }
+    }
+    ok
+}
+
+#[inline(always)]
+fn wrap(mut x: DVec3, p: &Prepared<'_>) -> DVec3 {
+    for a in 0..3 {
+        if !p.walled[a] {
+            x[a] = x[a].rem_euclid(p.size[a]);
+        }
+    }
+    x
+}
+
+/// Resolves the wall contacts of a step whose end lies through a wall. Returns the fate, the
+/// time into the step and the position when the particle leaves the air; otherwise leaves the
+/// state at the step's end.
+fn contacts<const EULER: bool>(
+    p: &Prepared<'_>,
+    body: &Body,
+    mut flight: Flight<EULER>,
+    s: &mut State,
+    tally: &mut [WallTally],
+) -> Option<(Fate, f64, DVec3)> {
+    let r = body.radius;
+    let mut elapsed = 0.0;
+    let (mut last_wall, mut last_x) = (0, s.x);
+    for _ in 0..MAX_CONTACTS {
+        let (x1, v1) = flight.end();
+        if inside(x1, r, p) {
+            s.x = wrap(x1, p);
+            s.v = v1;
+            return None;
+        }
+        if !x1.is_finite() {
+            return Some((Fate::Escaped, elapsed, s.x));
+        }
+        // The earliest plane crossed.
+        let mut first: Option<(f64, &Wall)> = None;
+        for wall in &p.walls {
+            let plane = if wall.upper { wall.position - r } else { wall.position + r };
+            let outside = |x: DVec3| if wall.upper { x[wall.axis] > plane } else { x[wall.axis] < plane };
+            if !outside(x1) {
+                continue;
+            }
+            let (mut lo, mut hi) = (0.0, flight.dt);
+            for _ in 0..BISECTIONS {
+                let mid = 0.5 * (lo + hi);
+                if outside(flight.at(mid).0) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            if first.is_none_or(|(t, _)| hi < t) {
+                first = Some((hi, wall));
+            }
+        }
+        let (t, wall) = first.expect("a step ending outside crossed a wall plane");
+        let (mut x, mut v) = flight.at(t);
+        x[wall.axis] = if wall.upper { wall.position - r } else { wall.position + r };
+        let x = wrap(x, p);
+        elapsed += t;
+        (last_wall, last_x) = (wall.id, x);
+        let n = DVec3::from_array(wall.normal());
+        // The trajectory crossed the plane: its normal velocity points into the wall.
+        let vn = v.dot(n);
+        v -= n * (vn + vn.abs());
+        let left = flight.dt - t;
+        let w = &mut tally[wall.id];
+        w.contacts += 1;
+        match p.scene.walls[wall.id] {
+            WallBehaviour::Sink => {
+                w.captures += 1;
+                w.energy.deposition += 0.5 * body.aero.mass * v.length_squared();
+                return Some((Fate::Deposited(wall.id), elapsed, x));
+            }
+            WallBehaviour::Reflect => {
+                w.rebounds += 1;
+                v -= 2.0 * n * v.dot(n);
+                s.zeta[wall.axis] = -s.zeta[wall.axis];
+                let mut v_inf = flight.v_inf;
+                v_inf[wall.axis] = body.settling[wall.axis] - (v_inf[wall.axis] - body.settling[wall.axis]);
+                flight = Flight { v_inf, ..flight.restart(x, v, left) };
+            }
+            WallBehaviour::Law { .. } if v.dot(n) >= 0.0 => {
+                // Touching without closing in: resting contact.
+                w.captures += 1;
+                return Some((Fate::Deposited(wall.id), elapsed, x));
+            }
+            WallBehaviour::Law { law, size } => {
+                let vc = match size {
+                    Some(size) => size.capture_velocity(law.params().vc, body.aero.diameter),
+                    None => law.params().vc,
+                };
+                let result = law.impact_with_capture_velocity(v, n, vc);
+                let loss = energy_loss(&result);
+                let m = body.aero.mass;
+                w.energy += EnergyLoss {
+                    material: m * loss.material,
+                    adhesion: m * loss.adhesion,
+                    friction: m * loss.friction,
+                    deposition: m * loss.deposition,
+                };
+                if !result.velocity.iter().all(|c| c.is_finite()) {
+                    return Some((Fate::Escaped, elapsed, x));
+                }
+                if result.coefficients.captured {
+                    w.captures += 1;
+                    return Some((Fate::Deposited(wall.id), elapsed, x));
+                }
+                w.rebounds += 1;
+                flight = flight.restart(x, DVec3::from_array(result.velocity), left);
+            }
+        }
+    }
+    // Still bouncing: at rest on the last wall it touched.
+    tally[last_wall].resting += 1;
+    Some((Fate::Deposited(last_wall), elapsed, last_x))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn brownian_step_has_the_ornstein_uhlenbeck_moments() {
+        let (tau, kt) = (2.0, 3.0);
+        for h in [1e-4, 0.01, 0.049, 0.051, 1.0, 30.0] {
+            let [sx, cxv, sv] = brownian_coefficients(h, tau, kt);
+            let e = (-h).exp();
+            // The same shape written with expm1: it cancels to ~1e-16 / h^2 relative only.
+            let var_x = kt * tau * tau * (2.0 * h + 4.0 * (-h).exp_m1() - (-2.0 * h).exp_m1());
+            let var_v = kt * (1.0 - e * e);
+            let cov = kt * tau * (1.0 - e) * (1.0 - e);
+            let tol = if h < 0.05 { 1e-8 } else { 1e-10 };
+            assert!((sx * sx - var_x).abs() <= tol * var_x.abs() + 1e-300, "h {h}");
+            assert!((sx * cxv - cov).abs() <= 1e-10 * cov, "h {h}");
+            assert!((cxv * cxv + sv * sv - var_v).abs() <= 1e-10 * var_v, "h {h}");
+        }
+        // Large h: position variance tends to 2 D dt with D = kT/m tau.
+        let [sx, ..] = brownian_coefficients(1e6, tau, kt);
+        assert!((sx * sx / (2.0 * kt * tau * tau * 1e6) - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn series_and_formula_agree_where_they_meet() {
+        let h: f64 = 0.05;
+        let series = h * h * h * (2.0 / 3.0 - h * (0.5 - h * (7.0 / 30.0 - h * (1.0 / 12.0 - h * 31.0 / 1260.0))));
+        let formula = 2.0 * h - 3.0 + 4.0 * (-h).exp() - (-2.0 * h).exp();
+        assert!((series / formula - 1.0).abs() < 1e-7, "{series} {formula}");
+    }
+
+    fn flight<const EULER: bool>(tau: f64, dt: f64) -> Flight<EULER> {
+        let h = dt / tau;
+        Flight {
+            x0: DVec3::new(0.1, 0.2, 0.3),
+            v0: DVec3::new(1.0, -2.0, 0.5),
+            v_inf: DVec3::new(0.2, 0.0, -0.1),
+            tau,
+            decay: (-h).exp(),
+            relax: tau * -(-h).exp_m1(),
+            dt,
+            bx: DVec3::ZERO,
+            bv: DVec3::ZERO,
+        }
+    }
+
+    #[test]
+    fn exponential_flight_is_the_exact_drag_solution_and_composes() {
+        for (tau, dt) in [(1e-3, 0.1), (0.5, 0.1), (10.0, 0.1), (0.0, 0.1)] {
+            let f = flight::<false>(tau, dt);
+            let (x, v) = f.end();
+            let (xa, va) = f.at(dt);
+            assert!((x - xa).length() < 1e-14 && (v - va).length() < 1e-14, "tau {tau}");
+            // By hand: v(t) = v_inf + (v0 - v_inf) e^(-t/tau).
+            let e = if tau > 0.0 { (-dt / tau).exp() } else { 0.0 };
+            assert!((v - (f.v_inf + (f.v0 - f.v_inf) * e)).length() < 1e-14);
+            // Stopping halfway and flying on from there ends at the same state.
+            let (xm, vm) = f.at(0.4 * dt);
+            let (x2, v2) = f.restart(xm, vm, 0.6 * dt).end();
+            assert!((x2 - x).length() < 1e-13 && (v2 - v).length() < 1e-13, "tau {tau}: {x2} {x}");
+            assert!(x.is_finite() && v.is_finite());
+        }
+        // Euler is first order: its end differs from the exact one by O(dt^2 / tau).
+        let f = flight::<false>(0.5, 0.01);
+        let (xe, _) = flight::<true>(0.5, 0.01).end();
+        let leading = (f.v0 - f.v_inf).length() * 0.01 * 0.01 / (2.0 * 0.5);
+        assert!(((xe - f.end().0).length() / leading - 1.0).abs() < 0.01);
+    }
+
+    #[test]
+    fn particle_streams_differ_and_repeat() {
+        let a: u64 = particle_rng(7, 0).random();
+        let b: u64 = particle_rng(7, 1).random();
+        let c: u64 = particle_rng(8, 0).random();
+        assert!(a != b && a != c && b != c);
+        assert_eq!(a, particle_rng(7, 0).random::<u64>());
+    }
+}

@@ -1,0 +1,170 @@
+//! The tracker against known results: settling, Brownian diffusion, diffusion onto a floor,
+//! the well-mixed condition of the dispersion model, mass conservation and reproducibility.
+
+use depo_tracker::air::{Aerodynamics, Air, STANDARD_GRAVITY};
+use depo_tracker::correlations::settling_diffusion_flux;
+use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, Run, Scene, SizeDistribution, WallBehaviour};
+use depo_wall_model::{SizeDependence, WallLaw};
+
+fn mono(count: usize, diameter: f64) -> Injection {
+    Injection { count, size: SizeDistribution::Monodisperse { diameter }, density: 1000.0, region: None }
+}
+
+/// Still air, floor only: the deposition velocity `J / C0` equals the Cunningham-corrected
+/// settling velocity within 4 standard errors, from 0.1 to 50 um.
+#[test]
+fn settling_onto_the_floor_deposits_at_the_terminal_velocity() {
+    let air = Air::standard();
+    for (d, drag) in [
+        (0.1e-6, Drag::Stokes),
+        (1e-6, Drag::Stokes),
+        (10e-6, Drag::Stokes),
+        (50e-6, Drag::Stokes),
+        (50e-6, Drag::SchillerNaumann),
+    ] {
+        let aero = Aerodynamics::new(d, 1000.0, &air, STANDARD_GRAVITY);
+        let vs = match drag {
+            Drag::Stokes => aero.settling_speed,
+            Drag::SchillerNaumann => aero.settling_speed_finite_reynolds(&air),
+        };
+        // A box tall enough that half the particles reach the floor in 400 steps.
+        let duration = 100.0;
+        let height = 2.0 * vs * duration + d;
+        let mut scene =
+            Scene::new(Geometry::Room { size: [10.0 * height, 10.0 * height, height] }, duration / 400.0, duration);
+        scene.drag = drag;
+        let n = 20_000;
+        let result = run(&scene, &mono(n, d)).unwrap();
+        let deposited = result.balance().deposited[0];
+        assert_eq!(result.balance().deposited.iter().sum::<usize>(), deposited, "only the floor collects");
+        // Injected uniformly over the height left free by the radius: C0 = n / (A (H - d)).
+        let v_d = deposited as f64 * (height - d) / (n as f64 * duration);
+        let p = deposited as f64 / n as f64;
+        let sigma = vs * (p * (1.0 - p) / n as f64).sqrt() / p;
+        assert!((v_d - vs).abs() < 4.0 * sigma + 2e-3 * vs, "d {d} {drag:?}: v_d {v_d} vs {vs} (sigma {sigma})");
+    }
+}
+
+/// Brownian motion alone: the mean-square displacement per axis is `2 D t` within 2 %.
+#[test]
+fn brownian_mean_square_displacement_is_2dt() {
+    let air = Air::standard();
+    let d = 0.1e-6;
+    let aero = Aerodynamics::new(d, 1000.0, &air, 0.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.1, 10.0);
+    scene.gravity = [0.0; 3];
+    scene.brownian = true;
+    let injection = Injection { region: Some(([0.49; 3], [0.51; 3])), ..mono(40_000, d) };
+    let result = run(&scene, &injection).unwrap();
+    assert_eq!(result.balance().airborne, 40_000);
+    let tau = aero.relaxation_time;
+    let expected = 2.0 * aero.diffusivity * (10.0 - tau * (1.0 - (-10.0 / tau).exp()));
+    for axis in 0..3 {
+        let msd = result.records.iter().map(|r| (r.position[axis] - r.start[axis]).powi(2)).sum::<f64>() / 40_000.0;
+        assert!((msd / expected - 1.0).abs() < 0.02, "axis {axis}: {msd} against {expected}");
+    }
+}
+
+/// Brownian diffusion with settling onto a floor from still air: the deposits follow the exact
+/// solution of the advection-diffusion equation over an absorbing plane within 5 %.
+#[test]
+fn diffusion_onto_a_floor_follows_the_exact_solution() {
+    let air = Air::standard();
+    let d = 0.05e-6;
+    let aero = Aerodynamics::new(d, 1000.0, &air, STANDARD_GRAVITY);
+    let (duration, height) = (100.0, 0.01);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, height] }, 0.02, duration);
+    scene.brownian = true;
+    // Only the floor matters: the ceiling is as far as the diffusion length allows.
+    let n = 40_000;
+    let result = run(&scene, &Injection { region: Some(([0.0; 3], [1.0, 1.0, height / 2.0])), ..mono(n, d) }).unwrap();
+    let deposited = result.balance().deposited[0] as f64;
+    // Cumulative flux: integrate J/C0 over time (midpoint rule on a fine grid; J ~ t^-1/2 at 0).
+    let steps = 200_000;
+    let h = duration / steps as f64;
+    let cumulative: f64 = (0..steps)
+        .map(|i| settling_diffusion_flux(aero.settling_speed, aero.diffusivity, (i as f64 + 0.5) * h) * h)
+        .sum();
+    let expected = cumulative * n as f64 / (height / 2.0);
+    assert!((deposited / expected - 1.0).abs() < 0.05, "{deposited} deposits against {expected}");
+}
+
+/// The dispersion model's drift keeps tracers well mixed in a turbulent channel: the share of
+/// tracers within 10 wall units of a wall stays what it was. Without the drift they pile up in
+/// the quiet layer at the wall, which the same check catches.
+#[test]
+fn tracers_stay_well_mixed_only_with_the_drift_correction() {
+    let air = Air::standard();
+    let nu = air.kinematic_viscosity();
+    let u_star = 0.3;
+    let unit = nu / u_star;
+    let height = 300.0 * unit;
+    let dt = 0.2 * unit / u_star;
+    let mut scene = Scene::new(Geometry::Channel { length: 0.1, width: 0.05, height }, dt, 1000.0 * dt * 5.0)
+        .with_walls(WallBehaviour::Reflect);
+    scene.gravity = [0.0; 3];
+    scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
+    let near_wall = |r: &Run| {
+        r.records.iter().filter(|r| r.position[2] < 10.0 * unit || r.position[2] > height - 10.0 * unit).count() as f64
+            / r.records.len() as f64
+    };
+    let expected = 20.0 / 300.0;
+    let mixed = run(&scene, &mono(10_000, 1e-9)).unwrap();
+    assert_eq!(mixed.balance().airborne, 10_000);
+    let share = near_wall(&mixed);
+    assert!((share / expected - 1.0).abs() < 0.15, "with drift: {share} against {expected}");
+    scene.drift_correction = false;
+    let share = near_wall(&run(&scene, &mono(10_000, 1e-9)).unwrap());
+    assert!(share / expected > 1.5, "without drift the wall layer should collect tracers: {share}");
+}
+
+fn busy_room() -> (Scene, Injection) {
+    let mut scene = Scene::new(Geometry::Room { size: [0.5, 0.4, 0.3] }, 0.01, 20.0);
+    scene.flow = Flow::indoor_room();
+    scene.brownian = true;
+    scene.drag = Drag::SchillerNaumann;
+    let law = WallLaw::preset("dunn1995-stainless").unwrap();
+    scene.walls[0] = WallBehaviour::Law { law, size: Some(SizeDependence::new(8.6e-6, 1.51).unwrap()) };
+    scene.walls[3] = WallBehaviour::Reflect;
+    let injection = Injection {
+        count: 3000,
+        size: SizeDistribution::LogNormal { median: 2e-6, geometric_sd: 2.5 },
+        density: 2000.0,
+        region: None,
+    };
+    (scene, injection)
+}
+
+/// Airborne + deposited + escaped = injected, exactly, in every run; masses to rounding.
+#[test]
+fn mass_is_conserved() {
+    let (scene, injection) = busy_room();
+    let result = run(&scene, &injection).unwrap();
+    let b = result.balance();
+    assert_eq!(b.airborne + b.deposited.iter().sum::<usize>() + b.escaped, b.injected);
+    assert_eq!(b.injected, 3000);
+    let mass = b.airborne_mass + b.deposited_mass.iter().sum::<f64>() + b.escaped_mass;
+    assert!((mass / b.injected_mass - 1.0).abs() < 1e-12);
+    assert!(b.deposited.iter().sum::<usize>() > 0 && b.airborne > 0);
+    // The tallies agree with the records: every deposit was a capture.
+    for (w, t) in result.tallies.iter().enumerate() {
+        assert_eq!((t.captures + t.resting) as usize, b.deposited[w], "wall {w}");
+        assert_eq!(t.contacts, t.captures + t.rebounds, "wall {w}: no escapes here");
+    }
+    assert_eq!(result.tallies[3].captures, 0, "the mirror deposits nothing");
+    assert!(result.records.iter().all(|r| r.position.iter().all(|c| c.is_finite())));
+}
+
+/// The same seed gives the same run, bit for bit, on one thread and on two.
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let (scene, injection) = busy_room();
+    let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+    let one = pool(1).install(|| run(&scene, &injection).unwrap());
+    let two = pool(2).install(|| run(&scene, &injection).unwrap());
+    assert_eq!(one, two);
+    let mut other = scene.clone();
+    other.seed += 1;
+    assert_ne!(run(&other, &injection).unwrap().records, one.records, "another seed, another run");
+    assert!(one.records.iter().any(|r| matches!(r.fate, Fate::Deposited(_))));
+}
