@@ -124,8 +124,9 @@ pub fn diameter_for_tau_plus(tau_plus: f64, density: f64, air: &Air, friction_ve
 /// Schmidt number `nu / D` of a particle.
 #[must_use]
 pub fn schmidt(diameter: f64, air: &Air) -> f64 {
-    let aero = Aerodynamics::new(diameter, 1000.0, air, 0.0);
-    air.kinematic_viscosity() / aero.diffusivity
+    // D depends on size only, not on density.
+    let slip = crate::air::slip_correction(diameter, air.mean_free_path());
+    air.kinematic_viscosity() / crate::air::diffusivity(diameter, slip, air)
 }
 
 /// The still-air Brownian deposition flux onto a floor with settling, from a uniform initial

@@ -17,6 +17,7 @@
 //!   contacts within a step, the particle's [`Fate`].
 //! - [`run`](mod@run): all particles across cores, reproducibly, and the [`Run`]'s statistics:
 //!   mass balance, deposition velocity, loss rate, deposition maps.
+//! - [`studies`]: the room and channel studies, runs beside their correlations.
 //! - [`correlations`]: what to compare with: Lai & Nazaroff (2000) for rooms, Wood (1981) and
 //!   Papavergos & Hedley (1984) for channels.
 //!
@@ -46,6 +47,7 @@ pub mod flow;
 pub mod geometry;
 pub mod run;
 pub mod scene;
+pub mod studies;
 mod track;
 
 pub use air::{Aerodynamics, Air};

@@ -318,10 +318,11 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
 
     for n in 0..p.steps {
         let t0 = n as f64 * dt;
-        let uf = fluid_velocity::<TURB>(field, p.size, s.x, &s.zeta);
-        if TURB {
-            advance_fluctuation(field, p.size, s.x, &mut s.zeta, &mut rng);
-        }
+        let uf = if TURB {
+            fluid_velocity_and_fluctuation(field, p.size, s.x, &mut s.zeta, &mut rng)
+        } else {
+            fluid_velocity::<false>(field, p.size, s.x, &s.zeta)
+        };
         if FINITE_RE {
             let re = (uf - s.v).length() * diameter / nu;
             body = Body::new(p, diameter, schiller_naumann(re));
@@ -392,17 +393,27 @@ fn fluid_velocity<const TURB: bool>(field: &FlowField, size: [f64; 3], x: DVec3,
     u
 }
 
-/// One exact Ornstein-Uhlenbeck step of the normalised fluctuations at `x`.
+/// The fluid velocity seen at `x` (mean plus `sigma zeta`), and one exact Ornstein-Uhlenbeck
+/// step of the normalised fluctuations `zeta` there, from one table lookup per component.
 #[inline(always)]
-fn advance_fluctuation(field: &FlowField, size: [f64; 3], x: DVec3, zeta: &mut [f64; 3], rng: &mut impl Rng) {
+fn fluid_velocity_and_fluctuation(
+    field: &FlowField,
+    size: [f64; 3],
+    x: DVec3,
+    zeta: &mut [f64; 3],
+    rng: &mut impl Rng,
+) -> DVec3 {
+    let mut u = fluid_velocity::<false>(field, size, x, zeta);
     if let Some(turb) = &field.turbulence {
         for (a, comp) in turb.iter().enumerate() {
             let (d, sign) = wall_distance(x[comp.axis], size[comp.axis]);
             let node = comp.table.at(d);
+            u[a] += node.sigma * zeta[a];
             let drift = if comp.drift { sign * node.slope * node.drift_gain } else { 0.0 };
             zeta[a] = zeta[a] * node.decay + drift + node.noise * normal(rng);
         }
     }
+    u
 }
 
 /// The trajectory of one (part of a) step.

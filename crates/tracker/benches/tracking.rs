@@ -1,0 +1,43 @@
+//! Tracking throughput in particle-steps per second on the current rayon pool (all cores),
+//! for the two scenes the tracker's speed goals name: drag and gravity in a box with the wall
+//! law on every wall, and the same with turbulent dispersion and Brownian motion.
+//!
+//! `cargo bench -p depo-tracker --bench tracking`; criterion's "thrpt" is particle-steps/s.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use depo_tracker::{run, Flow, Geometry, Injection, Scene, SizeDistribution, WallBehaviour};
+use depo_wall_model::WallLaw;
+
+fn scene(turbulent: bool) -> Scene {
+    let law = WallLaw::preset("dunn1995-stainless").unwrap();
+    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.01, 2.0)
+        .with_walls(WallBehaviour::Law { law, size: None });
+    if turbulent {
+        scene.flow = Flow::indoor_room();
+        scene.brownian = true;
+    }
+    scene
+}
+
+fn tracking(c: &mut Criterion) {
+    let injection = Injection {
+        count: 50_000,
+        size: SizeDistribution::Monodisperse { diameter: 5e-6 },
+        density: 1000.0,
+        region: None,
+    };
+    let mut group = c.benchmark_group("tracking");
+    group.sample_size(10);
+    for (name, turbulent) in [("drag+gravity+wall-law", false), ("+turbulence+brownian", true)] {
+        let scene = scene(turbulent);
+        let steps = run(&scene, &injection).unwrap().particle_steps();
+        group.throughput(Throughput::Elements(steps));
+        group.bench_with_input(BenchmarkId::new(name, injection.count), &scene, |b, scene| {
+            b.iter(|| run(scene, &injection).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, tracking);
+criterion_main!(benches);

@@ -1,0 +1,186 @@
+//! The two standard studies, each a set of runs with its comparison: deposition in a room
+//! against Lai & Nazaroff (2000), and in a turbulent channel against Wood (1981) and
+//! Papavergos & Hedley (1984). The `depo room` and `depo channel` commands print them.
+//!
+//! Both measure the deposition velocity over the second half of the run (the first half lets
+//! the near-wall concentration settle from the uniform injection), as deposits per area and
+//! time over the mean airborne concentration (see [`crate::run`]).
+
+use crate::air::Air;
+use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
+use crate::flow::Flow;
+use crate::geometry::{Geometry, Orientation};
+use crate::run::{run, Estimate};
+use crate::scene::{Injection, Scene, SceneError, SizeDistribution};
+
+/// A room study: one run per diameter in `scene` (a room with a turbulent-room flow).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoomStudy {
+    /// The room, its air, flow, walls and time stepping.
+    pub scene: Scene,
+    /// Particle diameters, m.
+    pub diameters: Vec<f64>,
+    /// Particles per diameter.
+    pub count: usize,
+    /// Particle density, kg/m^3.
+    pub density: f64,
+}
+
+impl Default for RoomStudy {
+    /// A 4 m x 3 m x 2.5 m room, `u* = 1 cm/s` with a well-mixed core ([`Flow::indoor_room`]),
+    /// Brownian motion, perfectly absorbing surfaces (as Lai & Nazaroff assume), 0.01-10 um
+    /// unit-density particles, 1800 s of 0.05 s steps.
+    fn default() -> Self {
+        let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.05, 1800.0);
+        scene.flow = Flow::indoor_room();
+        scene.brownian = true;
+        Self {
+            scene,
+            diameters: vec![0.01e-6, 0.03e-6, 0.1e-6, 0.3e-6, 1e-6, 3e-6, 10e-6],
+            count: 2000,
+            density: 1000.0,
+        }
+    }
+}
+
+/// One size of a room study.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoomPoint {
+    /// Diameter, m.
+    pub diameter: f64,
+    /// Deposition velocity onto the floor, ceiling and vertical walls, m/s.
+    pub floor: Estimate,
+    /// Onto the ceiling, m/s.
+    pub ceiling: Estimate,
+    /// Onto the vertical walls, m/s.
+    pub walls: Estimate,
+    /// Loss-rate coefficient, 1/s.
+    pub beta: Estimate,
+    /// Lai & Nazaroff's model for the same particle and friction velocity.
+    pub model: LaiNazaroff,
+    /// The model's loss-rate coefficient for this room, 1/s.
+    pub model_beta: f64,
+    /// Particle-steps the run took.
+    pub particle_steps: u64,
+}
+
+impl RoomStudy {
+    /// Runs every size; `progress` is told after each.
+    pub fn run(&self, mut progress: impl FnMut(usize)) -> Result<Vec<RoomPoint>, SceneError> {
+        let u_star = self.scene.flow.friction_velocity().unwrap_or(0.0);
+        let g = self.scene.gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
+        let size = self.scene.geometry.size();
+        let mut points = Vec::new();
+        for (i, &d) in self.diameters.iter().enumerate() {
+            let injection = Injection {
+                count: self.count,
+                size: SizeDistribution::Monodisperse { diameter: d },
+                density: self.density,
+                region: None,
+            };
+            let result = run(&self.scene, &injection)?;
+            let (from, to) = (0.5 * result.duration, result.duration);
+            let v = |o| result.deposition_velocity(&result.walls_facing(o), from, to);
+            let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
+            points.push(RoomPoint {
+                diameter: d,
+                floor: v(Orientation::Floor),
+                ceiling: v(Orientation::Ceiling),
+                walls: v(Orientation::Wall),
+                beta: result.loss_rate(from, to),
+                model,
+                model_beta: model.loss_rate(size),
+                particle_steps: result.particle_steps(),
+            });
+            progress(i + 1);
+        }
+        Ok(points)
+    }
+}
+
+/// A channel study: one run per `tau+` in a turbulent channel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChannelStudy {
+    /// The channel, its air, flow (a [`Flow::TurbulentChannel`]), walls and time stepping.
+    pub scene: Scene,
+    /// Dimensionless relaxation times `tau+ = tau u*^2 / nu`.
+    pub tau_plus: Vec<f64>,
+    /// Particles per `tau+`.
+    pub count: usize,
+    /// Particle density, kg/m^3.
+    pub density: f64,
+}
+
+impl Default for ChannelStudy {
+    /// A channel of `Re_tau = 150` (`u* = 0.3 m/s`, height 15 mm in standard air), no gravity
+    /// (the correlations are for vertical flows), Brownian motion, absorbing walls, particles
+    /// of 1000 kg/m^3, steps of 0.2 and runs of 3000 wall time units.
+    fn default() -> Self {
+        let air = Air::standard();
+        let u_star = 0.3;
+        let unit = air.kinematic_viscosity() / u_star;
+        let time = unit / u_star;
+        let mut scene = Scene::new(
+            Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 300.0 * unit },
+            0.2 * time,
+            3000.0 * time,
+        );
+        scene.gravity = [0.0; 3];
+        scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
+        scene.brownian = true;
+        Self { scene, tau_plus: vec![0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0], count: 4000, density: 1000.0 }
+    }
+}
+
+/// One `tau+` of a channel study.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChannelPoint {
+    /// `tau+`.
+    pub tau_plus: f64,
+    /// The particle diameter giving it, m.
+    pub diameter: f64,
+    /// Schmidt number `nu / D`.
+    pub schmidt: f64,
+    /// Dimensionless deposition velocity `V+ = v_d / u*`.
+    pub v_plus: Estimate,
+    /// Wood (1981) at this `tau+` and `Sc`.
+    pub wood: f64,
+    /// Papavergos & Hedley (1984).
+    pub papavergos_hedley: f64,
+    /// Particle-steps the run took.
+    pub particle_steps: u64,
+}
+
+impl ChannelStudy {
+    /// Runs every `tau+`; `progress` is told after each.
+    pub fn run(&self, mut progress: impl FnMut(usize)) -> Result<Vec<ChannelPoint>, SceneError> {
+        let u_star = self.scene.flow.friction_velocity().unwrap_or(1.0);
+        let air = &self.scene.air;
+        let mut points = Vec::new();
+        for (i, &tp) in self.tau_plus.iter().enumerate() {
+            let d = diameter_for_tau_plus(tp, self.density, air, u_star);
+            let injection = Injection {
+                count: self.count,
+                size: SizeDistribution::Monodisperse { diameter: d },
+                density: self.density,
+                region: None,
+            };
+            let result = run(&self.scene, &injection)?;
+            let (from, to) = (0.5 * result.duration, result.duration);
+            let all: Vec<usize> = (0..result.walls.len()).collect();
+            let v = result.deposition_velocity(&all, from, to);
+            let sc = schmidt(d, air);
+            points.push(ChannelPoint {
+                tau_plus: tp,
+                diameter: d,
+                schmidt: sc,
+                v_plus: Estimate { value: v.value / u_star, error: v.error / u_star, events: v.events },
+                wood: wood(tp, sc),
+                papavergos_hedley: papavergos_hedley(tp, sc),
+                particle_steps: result.particle_steps(),
+            });
+            progress(i + 1);
+        }
+        Ok(points)
+    }
+}

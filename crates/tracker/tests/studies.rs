@@ -1,0 +1,31 @@
+//! The room and channel studies against their correlations, on small runs.
+
+use depo_tracker::studies::{ChannelStudy, RoomStudy};
+
+/// Turbulent channel, impaction regime: `V+` at `tau+ = 10` within a factor of 2 of Wood (1981).
+#[test]
+fn channel_deposition_at_tau_plus_10_is_within_a_factor_2_of_wood() {
+    let study = ChannelStudy { tau_plus: vec![10.0], count: 2000, ..ChannelStudy::default() };
+    let points = study.run(|_| {}).unwrap();
+    let p = &points[0];
+    assert!(p.v_plus.events > 100, "{p:?}");
+    let ratio = p.v_plus.value / p.wood;
+    assert!((0.5..2.0).contains(&ratio), "V+ {} against Wood {}: ratio {ratio}", p.v_plus.value, p.wood);
+}
+
+/// Room: floor deposition of 3 um particles and of 0.01 um particles (Brownian) onto all
+/// surfaces within 30 % of Lai & Nazaroff (2000) for the same friction velocity.
+#[test]
+fn room_deposition_matches_lai_nazaroff_where_it_is_measurable() {
+    let study = RoomStudy { diameters: vec![0.01e-6, 3e-6], count: 1500, ..RoomStudy::default() };
+    let points = study.run(|_| {}).unwrap();
+    let ultrafine = &points[0];
+    assert!(ultrafine.beta.events > 30, "{ultrafine:?}");
+    let ratio = ultrafine.beta.value / ultrafine.model_beta;
+    assert!((0.7..1.3).contains(&ratio), "0.01 um: beta ratio {ratio}");
+    let coarse = &points[1];
+    assert!(coarse.floor.events > 100, "{coarse:?}");
+    let ratio = coarse.floor.value / coarse.model.floor;
+    assert!((0.7..1.3).contains(&ratio), "3 um floor: ratio {ratio}");
+    assert_eq!(coarse.ceiling.events, 0, "nothing settles upwards");
+}
