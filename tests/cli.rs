@@ -221,3 +221,89 @@ fn figures_are_written() {
     assert!(fig8.contains("vc ~ d^-1.51") && fig8.contains("-5/6"));
     std::fs::remove_dir_all(dir).ok();
 }
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("depo-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
+    let dir = scratch("room");
+    let scene = dir.join("small.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [3e-6, 10e-6]\ncount = 300\n\
+         [run]\ndt = 0.05\nduration = 300.0\n[walls]\nfloor = { behaviour = \"law\", preset = \"dunn1995-stainless\" }\n",
+    )
+    .unwrap();
+    let plots = dir.join("figures");
+    let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--plot", plots.to_str().unwrap()]);
+    assert_eq!(report["size_m"], serde_json::json!([1.0, 1.0, 1.0]));
+    let sizes = report["sizes"].as_array().unwrap();
+    assert_eq!(sizes.len(), 2);
+    let ten = &sizes[1];
+    assert_eq!(ten["diameter_um"], 10.0);
+    // 10 um settles at 3 mm/s: most deposits land on the floor, and beta is near v_s / H.
+    assert!(ten["floor"]["events"].as_u64().unwrap() > 50, "{ten}");
+    let beta = ten["beta_per_hour"]["value"].as_f64().unwrap();
+    let model = ten["lai_nazaroff"]["beta_per_hour"].as_f64().unwrap();
+    assert!(beta > 0.5 * model && beta < 2.0 * model, "{beta} against {model}");
+    for key in ["floor", "ceiling", "walls"] {
+        assert!(ten[key]["value"].as_f64().is_some() && ten["lai_nazaroff"][key].as_f64().is_some());
+    }
+    for figure in ["room-deposition.svg", "room-beta.svg"] {
+        assert!(std::fs::read_to_string(plots.join(figure)).unwrap().contains("<svg"), "{figure}");
+    }
+}
+
+#[test]
+fn channel_reports_v_plus_beside_wood() {
+    let dir = scratch("channel");
+    let figure = dir.join("v.svg");
+    let report = ok_json(&["channel", "--tau-plus", "10", "--format", "json", "--plot", figure.to_str().unwrap()]);
+    let point = &report["points"][0];
+    assert_eq!(point["tau_plus"], 10.0);
+    let ratio = point["ratio_to_wood"].as_f64().unwrap();
+    assert!((0.5..2.0).contains(&ratio), "{point}");
+    assert!((point["v_plus"]["value"].as_f64().unwrap() / point["wood"].as_f64().unwrap() - ratio).abs() < 1e-12);
+    assert_eq!(report["re_tau"].as_f64().unwrap().round(), 150.0);
+    assert!(std::fs::read_to_string(&figure).unwrap().contains("<svg"));
+}
+
+#[test]
+fn scene_file_errors_name_the_file_line_and_key() {
+    let dir = scratch("errors");
+    let unknown = dir.join("unknown.toml");
+    std::fs::write(&unknown, "[room]\nsise = [1.0, 1.0, 1.0]\n").unwrap();
+    user_error(&["room", unknown.to_str().unwrap(), "--no-plot"], "line 2: unknown field `sise`");
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "[flow]\nfriction_velocity = -1.0\n").unwrap();
+    user_error(&["room", bad.to_str().unwrap(), "--no-plot"], "`flow.friction_velocity` = -1");
+    let preset = dir.join("preset.toml");
+    std::fs::write(&preset, "[walls]\nlower = { preset = \"nope\" }\n").unwrap();
+    user_error(&["channel", preset.to_str().unwrap()], "walls.lower.preset");
+    user_error(&["room", dir.join("missing.toml").to_str().unwrap()], "cannot read");
+    user_error(&["channel", "--tau-plus", "-1"], "--tau-plus");
+}
+
+#[test]
+fn example_scene_files_parse() {
+    // Parsing only: zero-duration runs of the shipped examples, so every documented key is known.
+    for (command, file) in [("room", "examples/room.toml"), ("channel", "examples/channel.toml")] {
+        let text = std::fs::read_to_string(file).unwrap();
+        let dir = scratch(command);
+        let quick = dir.join("quick.toml");
+        let text = text
+            .replace("duration = 1800.0", "duration = 0.0")
+            .replace("duration_plus = 3000.0", "duration_plus = 0.0");
+        std::fs::write(&quick, text).unwrap();
+        let mut args = vec![command, quick.to_str().unwrap(), "--format", "csv"];
+        if command == "room" {
+            args.push("--no-plot");
+        }
+        let out = depo(&args);
+        assert!(out.status.success(), "{file}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+}

@@ -10,12 +10,15 @@ macro_rules! out {
 }
 
 mod bench;
+mod channel;
 mod curve;
 mod figures;
 mod fit;
 mod impact;
 mod plot;
 mod presets;
+mod room;
+mod scene_file;
 
 use clap::{Args as ClapArgs, Parser, Subcommand, ValueEnum};
 use depo::wall_model::{LawParams, WallLaw};
@@ -42,6 +45,10 @@ enum Command {
     Fit(fit::FitArgs),
     /// Redraw the paper's Figs. 6 and 8 and the presets' e curves as SVG files.
     Figures(figures::FiguresArgs),
+    /// Deposition in a room per particle size and surface, beside Lai & Nazaroff (2000).
+    Room(room::RoomArgs),
+    /// V+ against tau+ in a turbulent channel, beside Wood (1981).
+    Channel(channel::ChannelArgs),
     /// Kernel throughput against a copy kernel moving the same bytes, and each kernel's error.
     Bench(bench::BenchArgs),
 }
@@ -136,6 +143,8 @@ pub fn run(args: Args) -> Result<(), Error> {
         Command::Impact(a) => impact::run(&a),
         Command::Fit(a) => fit::run(&a),
         Command::Figures(a) => figures::run(&a),
+        Command::Room(a) => room::run(&a),
+        Command::Channel(a) => channel::run(&a),
         Command::Bench(a) => bench::run(&a),
     }
 }

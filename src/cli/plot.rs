@@ -42,9 +42,15 @@ fn chart(
     let ys = series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
     let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
     let (y0, y1) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| (a.min(y), b.max(y)));
-    if x0.partial_cmp(&x1) != Some(std::cmp::Ordering::Less) {
+    if !(x0.is_finite() && x1.is_finite()) {
         return Err(format!("cannot draw {}: no range to plot", path.display()));
     }
+    // One x value: widen the axis around it.
+    let (x0, x1) = match (x0 < x1, log_x) {
+        (true, _) => (x0, x1),
+        (false, true) => (x0 / 2.0, x1 * 2.0),
+        (false, false) => (x0 - 1.0, x1 + 1.0),
+    };
     let (y0, y1) = match (log_y, y0 < y1) {
         (true, true) => (y0 / 1.5, y1 * 1.5),
         (false, true) => (y0.min(0.0), y1 * 1.05),

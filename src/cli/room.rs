@@ -1,0 +1,218 @@
+//! `depo room`: deposition onto the floor, ceiling and walls of a room, per particle size,
+//! beside Lai & Nazaroff (2000).
+
+use std::path::PathBuf;
+
+use clap::Args as ClapArgs;
+use depo::tracker::studies::{RoomPoint, RoomStudy};
+use depo::tracker::{Estimate, Flow, Geometry};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+
+use super::plot::{self, Series};
+use super::{scene_file, Error, Format};
+
+#[derive(ClapArgs, Debug)]
+pub struct RoomArgs {
+    /// A scene file (TOML; see examples/room.toml). Without it, the built-in room.
+    scene: Option<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    format: Format,
+    /// Directory for the figures (room-deposition.svg, room-beta.svg).
+    #[arg(long, default_value = "depo-room")]
+    plot: PathBuf,
+    /// Write no figures.
+    #[arg(long)]
+    no_plot: bool,
+}
+
+/// A measured value with its standard error and the deposits it rests on.
+#[derive(Serialize)]
+pub struct Measured {
+    pub value: f64,
+    pub error: f64,
+    pub events: usize,
+}
+
+impl From<Estimate> for Measured {
+    fn from(e: Estimate) -> Self {
+        Self { value: e.value, error: e.error, events: e.events }
+    }
+}
+
+#[derive(Serialize)]
+struct Model {
+    floor: f64,
+    ceiling: f64,
+    walls: f64,
+    beta_per_hour: f64,
+}
+
+#[derive(Serialize)]
+struct Row {
+    diameter_um: f64,
+    floor: Measured,
+    ceiling: Measured,
+    walls: Measured,
+    beta_per_hour: Measured,
+    lai_nazaroff: Model,
+    particle_steps: u64,
+}
+
+#[derive(Serialize)]
+struct Report<'a> {
+    size_m: [f64; 3],
+    friction_velocity: f64,
+    particles_per_size: usize,
+    duration_s: f64,
+    sizes: &'a [Row],
+}
+
+fn row(p: &RoomPoint) -> Row {
+    let per_hour = |e: Estimate| Measured { value: e.value * 3600.0, error: e.error * 3600.0, events: e.events };
+    Row {
+        diameter_um: p.diameter * 1e6,
+        floor: p.floor.into(),
+        ceiling: p.ceiling.into(),
+        walls: p.walls.into(),
+        beta_per_hour: per_hour(p.beta),
+        lai_nazaroff: Model {
+            floor: p.model.floor,
+            ceiling: p.model.ceiling,
+            walls: p.model.wall,
+            beta_per_hour: p.model_beta * 3600.0,
+        },
+        particle_steps: p.particle_steps,
+    }
+}
+
+pub fn run(args: &RoomArgs) -> Result<(), Error> {
+    let study: RoomStudy = scene_file::room(args.scene.as_deref())?;
+    let where_ = args.scene.as_ref().map_or("the built-in room".to_string(), |p| p.display().to_string());
+    let progress = ProgressBar::new(study.diameters.len() as u64);
+    progress
+        .set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} sizes {elapsed}").map_err(|e| e.to_string())?);
+    let start = std::time::Instant::now();
+    let points = study.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?;
+    progress.finish_and_clear();
+    let seconds = start.elapsed().as_secs_f64();
+    let Geometry::Room { size } = study.scene.geometry else { unreachable!("a room study has a room") };
+    let u_star = match study.scene.flow {
+        Flow::TurbulentRoom { friction_velocity, .. } => friction_velocity,
+        _ => 0.0,
+    };
+    let rows: Vec<Row> = points.iter().map(row).collect();
+    let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();
+    match args.format {
+        Format::Json => {
+            let report = Report {
+                size_m: size,
+                friction_velocity: u_star,
+                particles_per_size: study.count,
+                duration_s: study.scene.duration,
+                sizes: &rows,
+            };
+            out!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?);
+        }
+        Format::Csv => {
+            out!("diameter_um,floor,floor_error,floor_lai_nazaroff,ceiling,ceiling_error,ceiling_lai_nazaroff,walls,walls_error,walls_lai_nazaroff,beta_per_hour,beta_error,beta_lai_nazaroff");
+            for r in &rows {
+                out!(
+                    "{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    r.diameter_um,
+                    r.floor.value,
+                    r.floor.error,
+                    r.lai_nazaroff.floor,
+                    r.ceiling.value,
+                    r.ceiling.error,
+                    r.lai_nazaroff.ceiling,
+                    r.walls.value,
+                    r.walls.error,
+                    r.lai_nazaroff.walls,
+                    r.beta_per_hour.value,
+                    r.beta_per_hour.error,
+                    r.lai_nazaroff.beta_per_hour
+                );
+            }
+        }
+        Format::Table => {
+            out!(
+                "Room {} x {} x {} m, u* = {} m/s, {} particles per size, {} s; deposition velocity (m/s) per surface",
+                size[0],
+                size[1],
+                size[2],
+                u_star,
+                study.count,
+                study.scene.duration
+            );
+            out!("measured +- standard error [deposits], beside Lai & Nazaroff (2000) for the same u*.");
+            out!(
+                "{:>8}  {:>26} {:>9}  {:>26} {:>9}  {:>26} {:>9}  {:>20} {:>7} {:>6}",
+                "d (um)",
+                "floor",
+                "L&N",
+                "ceiling",
+                "L&N",
+                "walls",
+                "L&N",
+                "beta (1/h)",
+                "L&N",
+                "ratio"
+            );
+            let cell = |m: &Measured| format!("{:.2e} +- {:.1e} [{}]", m.value, m.error, m.events);
+            for r in &rows {
+                out!(
+                    "{:>8.3}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>20} {:>7.3} {:>6.2}",
+                    r.diameter_um,
+                    cell(&r.floor),
+                    r.lai_nazaroff.floor,
+                    cell(&r.ceiling),
+                    r.lai_nazaroff.ceiling,
+                    cell(&r.walls),
+                    r.lai_nazaroff.walls,
+                    format!("{:.3} +- {:.3}", r.beta_per_hour.value, r.beta_per_hour.error),
+                    r.lai_nazaroff.beta_per_hour,
+                    r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour
+                );
+            }
+            out!("{steps} particle-steps in {seconds:.1} s ({:.1e} per second).", steps as f64 / seconds);
+        }
+    }
+    if !args.no_plot {
+        std::fs::create_dir_all(&args.plot).map_err(|e| format!("cannot create {}: {e}", args.plot.display()))?;
+        let series = |name: &str, pick: &dyn Fn(&Row) -> f64, markers: bool| Series {
+            name: name.to_string(),
+            points: rows.iter().map(|r| (r.diameter_um, pick(r))).filter(|p| p.1 > 0.0).collect(),
+            markers,
+        };
+        let deposition = args.plot.join("room-deposition.svg");
+        plot::log_log(
+            &deposition,
+            "Deposition velocity in a room",
+            "particle diameter (um)",
+            "deposition velocity (m/s)",
+            &[
+                series("floor (depo)", &|r| r.floor.value, true),
+                series("ceiling (depo)", &|r| r.ceiling.value, true),
+                series("walls (depo)", &|r| r.walls.value, true),
+                series("floor (Lai & Nazaroff)", &|r| r.lai_nazaroff.floor, false),
+                series("ceiling (Lai & Nazaroff)", &|r| r.lai_nazaroff.ceiling, false),
+                series("walls (Lai & Nazaroff)", &|r| r.lai_nazaroff.walls, false),
+            ],
+        )?;
+        let beta = args.plot.join("room-beta.svg");
+        plot::log_log(
+            &beta,
+            "Loss-rate coefficient",
+            "particle diameter (um)",
+            "beta (1/h)",
+            &[
+                series("depo", &|r| r.beta_per_hour.value, true),
+                series("Lai & Nazaroff (2000)", &|r| r.lai_nazaroff.beta_per_hour, false),
+            ],
+        )?;
+        eprintln!("figures: {} and {}", deposition.display(), beta.display());
+    }
+    Ok(())
+}

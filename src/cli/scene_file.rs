@@ -1,0 +1,293 @@
+//! Scene files for `depo room` and `depo channel`: TOML, every key optional (the built-in
+//! study's value stands in), unknown keys rejected with their line. The commented examples
+//! `examples/room.toml` and `examples/channel.toml` list every key.
+
+use std::path::Path;
+
+use depo::tracker::air::STANDARD_GRAVITY;
+use depo::tracker::studies::{ChannelStudy, RoomStudy};
+use depo::tracker::{Flow, Geometry, Scene, WallBehaviour};
+use depo::wall_model::{SizeDependence, WallLaw};
+use serde::Deserialize;
+
+use super::Error;
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct AirFile {
+    temperature: Option<f64>,
+    pressure: Option<f64>,
+    density: Option<f64>,
+    viscosity: Option<f64>,
+}
+
+#[derive(Deserialize, Default, Clone)]
+#[serde(deny_unknown_fields)]
+struct WallFile {
+    /// "sink", "reflect" or "law".
+    behaviour: Option<String>,
+    preset: Option<String>,
+    mu: Option<f64>,
+    size_exponent: Option<f64>,
+    reference_diameter: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct WallsFile {
+    all: Option<WallFile>,
+    floor: Option<WallFile>,
+    ceiling: Option<WallFile>,
+    x0: Option<WallFile>,
+    x1: Option<WallFile>,
+    y0: Option<WallFile>,
+    y1: Option<WallFile>,
+    lower: Option<WallFile>,
+    upper: Option<WallFile>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RunFile {
+    dt: Option<f64>,
+    duration: Option<f64>,
+    dt_plus: Option<f64>,
+    duration_plus: Option<f64>,
+    seed: Option<u64>,
+    brownian: Option<bool>,
+    gravity: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RoomSection {
+    size: Option<[f64; 3]>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RoomFlowFile {
+    friction_velocity: Option<f64>,
+    core_rms: Option<f64>,
+    core_tke: Option<f64>,
+    core_time: Option<f64>,
+    blend_length: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RoomParticles {
+    diameters: Option<Vec<f64>>,
+    count: Option<usize>,
+    density: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RoomFile {
+    #[serde(default)]
+    room: RoomSection,
+    #[serde(default)]
+    air: AirFile,
+    #[serde(default)]
+    flow: RoomFlowFile,
+    #[serde(default)]
+    particles: RoomParticles,
+    #[serde(default)]
+    walls: WallsFile,
+    #[serde(default)]
+    run: RunFile,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct ChannelSection {
+    friction_velocity: Option<f64>,
+    re_tau: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct ChannelParticles {
+    tau_plus: Option<Vec<f64>>,
+    count: Option<usize>,
+    density: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct ChannelFile {
+    #[serde(default)]
+    channel: ChannelSection,
+    #[serde(default)]
+    air: AirFile,
+    #[serde(default)]
+    particles: ChannelParticles,
+    #[serde(default)]
+    walls: WallsFile,
+    #[serde(default)]
+    run: RunFile,
+}
+
+/// Reads and parses `path`; a TOML error names the file, the line and the key.
+fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<T, Error> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    toml::from_str(&text).map_err(|e| {
+        let line = e.span().map(|s| text[..s.start].matches('\n').count() + 1);
+        let message = e.message().trim().replace('\n', " ");
+        match line {
+            Some(line) => format!("{} line {line}: {message}", path.display()),
+            None => format!("{}: {message}", path.display()),
+        }
+    })
+}
+
+fn set<T>(slot: &mut T, value: Option<T>) {
+    if let Some(v) = value {
+        *slot = v;
+    }
+}
+
+fn apply_air(scene: &mut Scene, air: &AirFile) {
+    set(&mut scene.air.temperature, air.temperature);
+    set(&mut scene.air.pressure, air.pressure);
+    set(&mut scene.air.density, air.density);
+    set(&mut scene.air.viscosity, air.viscosity);
+}
+
+fn wall_behaviour(name: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
+    let key = |k: &str| format!("walls.{name}.{k}");
+    match file.behaviour.as_deref().unwrap_or(if file.preset.is_some() { "law" } else { "sink" }) {
+        "sink" => Ok(WallBehaviour::Sink),
+        "reflect" => Ok(WallBehaviour::Reflect),
+        "law" => {
+            let id = file.preset.as_deref().ok_or_else(|| format!("`{}` is needed for a wall law", key("preset")))?;
+            let mut law = WallLaw::preset(id).map_err(|e| format!("`{}`: {e}", key("preset")))?;
+            if let Some(mu) = file.mu {
+                law = WallLaw::new(law.params().with_friction(mu)).map_err(|e| format!("`{}`: {e}", key("mu")))?;
+            }
+            let size = match file.size_exponent {
+                None => None,
+                Some(alpha) => {
+                    let d_ref = file
+                        .reference_diameter
+                        .ok_or_else(|| format!("`{}` is needed with a size exponent", key("reference_diameter")))?;
+                    Some(SizeDependence::new(d_ref, alpha).map_err(|e| format!("`walls.{name}`: {e}"))?)
+                }
+            };
+            Ok(WallBehaviour::Law { law, size })
+        }
+        other => Err(format!("`{}` = \"{other}\": expected \"sink\", \"reflect\" or \"law\"", key("behaviour"))),
+    }
+}
+
+fn apply_walls(scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
+    if let Some(all) = &walls.all {
+        *scene = scene.clone().with_walls(wall_behaviour("all", all)?);
+    }
+    let geometry = scene.geometry;
+    for wall in geometry.walls() {
+        let name = wall.name(&geometry);
+        let file = match name {
+            "floor" => &walls.floor,
+            "ceiling" => &walls.ceiling,
+            "x0" => &walls.x0,
+            "x1" => &walls.x1,
+            "y0" => &walls.y0,
+            "y1" => &walls.y1,
+            "lower" => &walls.lower,
+            _ => &walls.upper,
+        };
+        if let Some(file) = file {
+            scene.walls[wall.id] = wall_behaviour(name, file)?;
+        }
+    }
+    let room_only = [&walls.floor, &walls.ceiling, &walls.x0, &walls.x1, &walls.y0, &walls.y1];
+    let channel_only = [&walls.lower, &walls.upper];
+    let foreign = match geometry {
+        Geometry::Room { .. } => channel_only.iter().any(|w| w.is_some()),
+        Geometry::Channel { .. } => room_only.iter().any(|w| w.is_some()),
+    };
+    if foreign {
+        return Err("`walls`: a room has floor, ceiling, x0, x1, y0, y1; a channel has lower and upper".into());
+    }
+    Ok(())
+}
+
+fn gravity(g: f64) -> [f64; 3] {
+    [0.0, 0.0, -g]
+}
+
+/// The room study of `path`, or the built-in one.
+pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
+    let mut study = RoomStudy::default();
+    let Some(path) = path else { return Ok(study) };
+    let file: RoomFile = read(path)?;
+    let scene = &mut study.scene;
+    if let Some(size) = file.room.size {
+        scene.geometry = Geometry::Room { size };
+    }
+    apply_air(scene, &file.air);
+    if let Flow::TurbulentRoom { mut friction_velocity, mut core_rms, mut core_time, mut blend_length } = scene.flow {
+        set(&mut friction_velocity, file.flow.friction_velocity);
+        set(&mut core_rms, file.flow.core_rms);
+        if let Some(k) = file.flow.core_tke {
+            if file.flow.core_rms.is_some() {
+                return Err(format!("{}: give `flow.core_rms` or `flow.core_tke`, not both", path.display()));
+            }
+            core_rms = (2.0 * k / 3.0).sqrt();
+        }
+        set(&mut core_time, file.flow.core_time);
+        set(&mut blend_length, file.flow.blend_length);
+        scene.flow = Flow::TurbulentRoom { friction_velocity, core_rms, core_time, blend_length };
+    }
+    set(&mut scene.dt, file.run.dt);
+    set(&mut scene.duration, file.run.duration);
+    set(&mut scene.seed, file.run.seed);
+    set(&mut scene.brownian, file.run.brownian);
+    scene.gravity = gravity(file.run.gravity.unwrap_or(STANDARD_GRAVITY));
+    if file.run.dt_plus.is_some() || file.run.duration_plus.is_some() {
+        return Err(format!("{}: a room takes `run.dt` and `run.duration` in seconds", path.display()));
+    }
+    apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
+    set(&mut study.diameters, file.particles.diameters);
+    set(&mut study.count, file.particles.count);
+    set(&mut study.density, file.particles.density);
+    if study.diameters.is_empty() {
+        return Err(format!("{}: `particles.diameters` is empty", path.display()));
+    }
+    Ok(study)
+}
+
+/// The channel study of `path`, or the built-in one.
+pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
+    let mut study = ChannelStudy::default();
+    let Some(path) = path else { return Ok(study) };
+    let file: ChannelFile = read(path)?;
+    let scene = &mut study.scene;
+    apply_air(scene, &file.air);
+    let u_star = file.channel.friction_velocity.unwrap_or(scene.flow.friction_velocity().unwrap_or(0.3));
+    let re_tau = file.channel.re_tau.unwrap_or(150.0);
+    for (key, v) in [("channel.friction_velocity", u_star), ("channel.re_tau", re_tau)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(format!("{}: `{key}` = {v} must be finite and positive", path.display()));
+        }
+    }
+    let unit = scene.air.kinematic_viscosity() / u_star;
+    let time = unit / u_star;
+    scene.geometry = Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 2.0 * re_tau * unit };
+    scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
+    scene.dt = file.run.dt_plus.unwrap_or(0.2) * time;
+    scene.duration = file.run.duration_plus.unwrap_or(3000.0) * time;
+    if file.run.dt.is_some() || file.run.duration.is_some() {
+        return Err(format!("{}: a channel takes `run.dt_plus` and `run.duration_plus` in wall units", path.display()));
+    }
+    set(&mut scene.seed, file.run.seed);
+    set(&mut scene.brownian, file.run.brownian);
+    scene.gravity = gravity(file.run.gravity.unwrap_or(0.0));
+    apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
+    set(&mut study.tau_plus, file.particles.tau_plus);
+    set(&mut study.count, file.particles.count);
+    set(&mut study.density, file.particles.density);
+    Ok(study)
+}
