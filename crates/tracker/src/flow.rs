@@ -153,8 +153,8 @@ pub(crate) struct Node {
 }
 
 /// A profile of the distance `y` to the nearer wall, tabulated once per run on nodes uniform
-/// in `sqrt(y)` (fine at the wall, where the profiles change fastest) and interpolated
-/// linearly in the hot loop.
+/// in `sqrt(y)` (fine at the wall, where the profiles change fastest): `sigma` interpolated
+/// linearly in the hot loop, the rest taken from the cell's lower node.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Table {
     inv_ds: f64,
@@ -193,14 +193,10 @@ impl Table {
         let last = self.nodes.len() - 2;
         let i = (s as usize).min(last);
         let f = (s - i as f64).min(1.0);
+        // sigma is interpolated (the fluid velocity seen is continuous in y); the time-scale
+        // factors and the slope are the cell's own (T_L changes little across a cell).
         let (a, b) = (self.nodes[i], self.nodes[i + 1]);
-        Node {
-            sigma: a.sigma + f * (b.sigma - a.sigma),
-            slope: a.slope,
-            decay: a.decay + f * (b.decay - a.decay),
-            noise: a.noise + f * (b.noise - a.noise),
-            drift_gain: a.drift_gain + f * (b.drift_gain - a.drift_gain),
-        }
+        Node { sigma: a.sigma + f * (b.sigma - a.sigma), ..a }
     }
 }
 

@@ -294,14 +294,16 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
         let (l, h) = if p.walled[a] { (lo[a].max(r), hi[a].min(p.size[a] - r)) } else { (lo[a], hi[a]) };
         start[a] = if h > l { rng.random_range(l..h) } else { 0.5 * (l + h) };
     }
-    let mut s = State { x: DVec3::from_array(start), v: DVec3::ZERO, zeta: [0.0; 3] };
+    // The state lives in locals (registers) in the hot loop; only a contact takes it elsewhere.
+    let mut x = DVec3::from_array(start);
+    let mut zeta = [0.0; 3];
     if TURB {
-        s.zeta = [normal(&mut rng), normal(&mut rng), normal(&mut rng)];
+        zeta = [normal(&mut rng), normal(&mut rng), normal(&mut rng)];
     }
-    s.v = fluid_velocity::<TURB>(field, p.size, s.x, &s.zeta) + body.settling;
+    let mut v = fluid_velocity::<TURB>(field, p.size, x, &zeta) + body.settling;
     if BROWN {
         let sd = body.thermal_variance.sqrt();
-        s.v += DVec3::new(normal(&mut rng), normal(&mut rng), normal(&mut rng)) * sd;
+        v += DVec3::new(normal(&mut rng), normal(&mut rng), normal(&mut rng)) * sd;
     }
     let base = body;
 
@@ -319,12 +321,12 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     for n in 0..p.steps {
         let t0 = n as f64 * dt;
         let uf = if TURB {
-            fluid_velocity_and_fluctuation(field, p.size, s.x, &mut s.zeta, &mut rng)
+            fluid_velocity_and_fluctuation(field, p.size, x, &mut zeta, &mut rng)
         } else {
-            fluid_velocity::<false>(field, p.size, s.x, &s.zeta)
+            fluid_velocity::<false>(field, p.size, x, &zeta)
         };
         if FINITE_RE {
-            let re = (uf - s.v).length() * diameter / nu;
+            let re = (uf - v).length() * diameter / nu;
             body = Body::new(p, diameter, schiller_naumann(re));
             // Thermal variance does not depend on drag; keep the injected one.
             body.thermal_variance = base.thermal_variance;
@@ -347,32 +349,23 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
         } else {
             (DVec3::ZERO, DVec3::ZERO)
         };
-        let flight = Flight::<EULER> {
-            x0: s.x,
-            v0: s.v,
-            v_inf,
-            tau: body.tau(),
-            decay: body.decay,
-            relax: body.relax,
-            dt,
-            bx,
-            bv,
-        };
+        let flight =
+            Flight::<EULER> { x0: x, v0: v, v_inf, tau: body.tau(), decay: body.decay, relax: body.relax, dt, bx, bv };
         let (x1, v1) = flight.end();
         if inside(x1, r, p) {
-            s.x = wrap(x1, p);
-            s.v = v1;
-            if !(s.x.is_finite() && s.v.is_finite()) {
-                return record(Fate::Escaped, t0 + dt, s.x, n as u64 + 1);
+            x = wrap(x1, p);
+            v = v1;
+            if !(x.is_finite() && v.is_finite()) {
+                return record(Fate::Escaped, t0 + dt, x, n as u64 + 1);
             }
             continue;
         }
-        match contacts::<EULER>(p, &body, flight, &mut s, tally) {
-            None => {}
-            Some((fate, t, x)) => return record(fate, t0 + t, x, n as u64 + 1),
+        match contacts::<EULER>(p, &body, flight, State { x, v, zeta }, tally) {
+            AfterContacts::Airborne(s) => (x, v, zeta) = (s.x, s.v, s.zeta),
+            AfterContacts::Left(fate, t, at) => return record(fate, t0 + t, at, n as u64 + 1),
         }
     }
-    record(Fate::Airborne, p.steps as f64 * dt, s.x, p.steps as u64)
+    record(Fate::Airborne, p.steps as f64 * dt, x, p.steps as u64)
 }
 
 /// The mean flow plus the fluctuation `sigma zeta` at `x`.
@@ -493,16 +486,23 @@ fn wrap(mut x: DVec3, p: &Prepared<'_>) -> DVec3 {
     x
 }
 
-/// Resolves the wall contacts of a step whose end lies through a wall. Returns the fate, the
-/// time into the step and the position when the particle leaves the air; otherwise leaves the
-/// state at the step's end.
+/// How a step with wall contacts ended.
+enum AfterContacts {
+    /// Still in the air, in this state at the step's end.
+    Airborne(State),
+    /// Gone: its fate, the time into the step and where.
+    Left(Fate, f64, DVec3),
+}
+
+/// Resolves the wall contacts of a step whose end lies through a wall.
+#[cold]
 fn contacts<const EULER: bool>(
     p: &Prepared<'_>,
     body: &Body,
     mut flight: Flight<EULER>,
-    s: &mut State,
+    mut s: State,
     tally: &mut [WallTally],
-) -> Option<(Fate, f64, DVec3)> {
+) -> AfterContacts {
     let r = body.radius;
     let mut elapsed = 0.0;
     let (mut last_wall, mut last_x) = (0, s.x);
@@ -511,10 +511,10 @@ fn contacts<const EULER: bool>(
         if inside(x1, r, p) {
             s.x = wrap(x1, p);
             s.v = v1;
-            return None;
+            return AfterContacts::Airborne(s);
         }
         if !x1.is_finite() {
-            return Some((Fate::Escaped, elapsed, s.x));
+            return AfterContacts::Left(Fate::Escaped, elapsed, s.x);
         }
         // The earliest plane crossed.
         let mut first: Option<(f64, &Wall)> = None;
@@ -554,7 +554,7 @@ fn contacts<const EULER: bool>(
             WallBehaviour::Sink => {
                 w.captures += 1;
                 w.energy.deposition += 0.5 * body.aero.mass * v.length_squared();
-                return Some((Fate::Deposited(wall.id), elapsed, x));
+                return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
             }
             WallBehaviour::Reflect => {
                 w.rebounds += 1;
@@ -567,7 +567,7 @@ fn contacts<const EULER: bool>(
             WallBehaviour::Law { .. } if v.dot(n) >= 0.0 => {
                 // Touching without closing in: resting contact.
                 w.captures += 1;
-                return Some((Fate::Deposited(wall.id), elapsed, x));
+                return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
             }
             WallBehaviour::Law { law, size } => {
                 let vc = match size {
@@ -584,11 +584,11 @@ fn contacts<const EULER: bool>(
                     deposition: m * loss.deposition,
                 };
                 if !result.velocity.iter().all(|c| c.is_finite()) {
-                    return Some((Fate::Escaped, elapsed, x));
+                    return AfterContacts::Left(Fate::Escaped, elapsed, x);
                 }
                 if result.coefficients.captured {
                     w.captures += 1;
-                    return Some((Fate::Deposited(wall.id), elapsed, x));
+                    return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
                 }
                 w.rebounds += 1;
                 flight = flight.restart(x, DVec3::from_array(result.velocity), left);
@@ -597,7 +597,7 @@ fn contacts<const EULER: bool>(
     }
     // Still bouncing: at rest on the last wall it touched.
     tally[last_wall].resting += 1;
-    Some((Fate::Deposited(last_wall), elapsed, last_x))
+    AfterContacts::Left(Fate::Deposited(last_wall), elapsed, last_x)
 }
 
 #[cfg(test)]
