@@ -307,3 +307,21 @@ fn example_scene_files_parse() {
         assert!(out.status.success(), "{file}: {}", String::from_utf8_lossy(&out.stderr));
     }
 }
+
+#[test]
+fn bench_integrators_reports_first_order_and_euler_instability() {
+    let rows = ok_json(&["bench", "--integrators", "--format", "json"]);
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 14);
+    for row in rows {
+        assert!(row["seconds"].as_f64().unwrap() > 0.0 && row["particle_steps"].as_u64().unwrap() > 0);
+        if let (Some(order), true) = (row["observed_order"].as_f64(), row["dt_over_tau"].as_f64().unwrap() < 2.0) {
+            assert!((0.9..1.2).contains(&order), "{row}");
+        }
+    }
+    let euler_large = rows.iter().find(|r| r["scheme"] == "euler" && r["dt_over_tau"].as_f64().unwrap() > 2.0).unwrap();
+    assert!(euler_large["relative_error"].is_null(), "Euler is unstable beyond dt = 2 tau: {euler_large}");
+    let exp_large =
+        rows.iter().find(|r| r["scheme"] == "exponential" && r["dt_over_tau"].as_f64().unwrap() > 2.0).unwrap();
+    assert!(exp_large["relative_error"].as_f64().unwrap() < 0.1);
+}

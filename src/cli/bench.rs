@@ -1,10 +1,13 @@
 //! `depo bench`: the wall-law kernels' throughput against a copy kernel moving the same bytes
-//! (timed interleaved), and each kernel's error against the f64 libm-pow kernel.
+//! (timed interleaved), and each kernel's error against the f64 libm-pow kernel; with
+//! `--integrators`, the tracker's integrators' run time against error over the step size.
 
 use std::path::PathBuf;
 
 use clap::Args;
 use depo::bench::{error_against_reference, measure, standard_scenarios};
+use depo::tracker::convergence::{integrator_convergence, relaxation_time};
+use depo::tracker::Scheme;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
@@ -31,6 +34,9 @@ pub struct BenchArgs {
     /// Also draw throughput (fraction of the ceiling) against error into this SVG file.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// The tracker's integrators instead: run time against error over the step size.
+    #[arg(long)]
+    integrators: bool,
 }
 
 /// One kernel's figures; the JSON keys are stable.
@@ -45,6 +51,9 @@ struct Row {
 }
 
 pub fn run(args: &BenchArgs) -> Result<(), Error> {
+    if args.integrators {
+        return integrators(args);
+    }
     if args.n < 1000 || args.threads == 0 || args.reps == 0 {
         return Err("--n must be at least 1000, --threads and --reps at least 1".into());
     }
@@ -136,5 +145,106 @@ fn plot_points(path: &std::path::Path, series: &[Series]) -> Result<(), Error> {
         true,
     )?;
     eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+/// One integrator at one step size; the JSON keys are stable.
+#[derive(Serialize)]
+struct IntegratorRow {
+    scheme: &'static str,
+    dt_over_tau: f64,
+    seconds: f64,
+    particle_steps: u64,
+    relative_error: Option<f64>,
+    observed_order: Option<f64>,
+}
+
+fn integrators(args: &BenchArgs) -> Result<(), Error> {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build().map_err(|e| e.to_string())?;
+    let ratios = [0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0];
+    let rows: Vec<IntegratorRow> = pool
+        .install(|| integrator_convergence(&ratios, 2000))
+        .into_iter()
+        .map(|r| IntegratorRow {
+            scheme: match r.scheme {
+                Scheme::Exponential => "exponential",
+                Scheme::Euler => "euler",
+            },
+            dt_over_tau: r.dt_over_tau,
+            seconds: r.seconds,
+            particle_steps: r.particle_steps,
+            relative_error: r.error.is_finite().then_some(r.error),
+            observed_order: r.order,
+        })
+        .collect();
+    let show = |x: Option<f64>, precision: usize| x.map_or("unstable".to_string(), |v| format!("{v:.precision$e}"));
+    match args.format {
+        Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
+        Format::Csv => {
+            out!("scheme,dt_over_tau,seconds,particle_steps,relative_error,observed_order");
+            for r in &rows {
+                let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+                out!(
+                    "{},{},{},{},{},{}",
+                    r.scheme,
+                    r.dt_over_tau,
+                    r.seconds,
+                    r.particle_steps,
+                    opt(r.relative_error),
+                    opt(r.observed_order)
+                );
+            }
+        }
+        Format::Table => {
+            out!(
+                "Particles settling across a Poiseuille channel from rest (tau = {:.2} ms), {} threads;",
+                relaxation_time() * 1e3,
+                args.threads
+            );
+            out!("error: RMS position error after 0.1 s against dt = tau/1000, relative to the distance travelled.");
+            out!(
+                "{:<12} {:>8} {:>10} {:>13} {:>10} {:>6}",
+                "scheme",
+                "dt/tau",
+                "run (ms)",
+                "particle-steps",
+                "error",
+                "order"
+            );
+            for r in &rows {
+                out!(
+                    "{:<12} {:>8.2} {:>10.2} {:>13} {:>10} {:>6}",
+                    r.scheme,
+                    r.dt_over_tau,
+                    r.seconds * 1e3,
+                    r.particle_steps,
+                    show(r.relative_error, 2),
+                    r.observed_order.map_or("-".to_string(), |o| format!("{o:.2}"))
+                );
+            }
+        }
+    }
+    if let Some(path) = &args.plot {
+        let series: Vec<Series> = ["exponential", "euler"]
+            .iter()
+            .map(|scheme| Series {
+                name: (*scheme).to_string(),
+                points: rows
+                    .iter()
+                    .filter(|r| r.scheme == *scheme)
+                    .filter_map(|r| r.relative_error.map(|e| (r.seconds * 1e3, e)))
+                    .collect(),
+                markers: true,
+            })
+            .collect();
+        plot::log_log(
+            path,
+            "Integrators: run time against error",
+            "run time (ms)",
+            "relative position error",
+            &series,
+        )?;
+        eprintln!("wrote {}", path.display());
+    }
     Ok(())
 }

@@ -20,12 +20,7 @@ fn scene(turbulent: bool) -> Scene {
 }
 
 fn tracking(c: &mut Criterion) {
-    let injection = Injection {
-        count: 50_000,
-        size: SizeDistribution::Monodisperse { diameter: 5e-6 },
-        density: 1000.0,
-        region: None,
-    };
+    let injection = Injection::new(50_000, SizeDistribution::Monodisperse { diameter: 5e-6 }, 1000.0);
     let mut group = c.benchmark_group("tracking");
     group.sample_size(10);
     for (name, turbulent) in [("drag+gravity+wall-law", false), ("+turbulence+brownian", true)] {

@@ -17,6 +17,7 @@
 //!   contacts within a step, the particle's [`Fate`].
 //! - [`run`](mod@run): all particles across cores, reproducibly, and the [`Run`]'s statistics:
 //!   mass balance, deposition velocity, loss rate, deposition maps.
+//! - [`convergence`]: run time against error of the integrators over the step size.
 //! - [`studies`]: the room and channel studies, runs beside their correlations.
 //! - [`correlations`]: what to compare with: Lai & Nazaroff (2000) for rooms, Wood (1981) and
 //!   Papavergos & Hedley (1984) for channels.
@@ -28,12 +29,7 @@
 //!
 //! // 10 um particles settling in still air onto the floor of a 1 m box, for 10 s.
 //! let scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.01, 10.0);
-//! let particles = Injection {
-//!     count: 2000,
-//!     size: SizeDistribution::Monodisperse { diameter: 10e-6 },
-//!     density: 1000.0,
-//!     region: None,
-//! };
+//! let particles = Injection::new(2000, SizeDistribution::Monodisperse { diameter: 10e-6 }, 1000.0);
 //! let result = run(&scene, &particles).unwrap();
 //! let balance = result.balance();
 //! assert_eq!(balance.airborne + balance.deposited.iter().sum::<usize>() + balance.escaped, 2000);
@@ -42,6 +38,7 @@
 //! ```
 
 pub mod air;
+pub mod convergence;
 pub mod correlations;
 pub mod flow;
 pub mod geometry;

@@ -68,6 +68,30 @@ pub struct Injection {
     pub density: f64,
     /// A box `(low, high)` corners in m, inside the domain; `None` for the whole domain.
     pub region: Option<([f64; 3], [f64; 3])>,
+    /// The initial velocity (m/s) of every particle; `None` for the local mean flow plus the
+    /// settling velocity.
+    pub velocity: Option<[f64; 3]>,
+}
+
+impl Injection {
+    /// `count` particles of `size` and `density` (kg/m^3) over the whole domain, at the local
+    /// flow velocity plus their settling velocity.
+    #[must_use]
+    pub fn new(count: usize, size: SizeDistribution, density: f64) -> Self {
+        Self { count, size, density, region: None, velocity: None }
+    }
+
+    /// Only within the box with corners `low` and `high` (m).
+    #[must_use]
+    pub fn within(self, low: [f64; 3], high: [f64; 3]) -> Self {
+        Self { region: Some((low, high)), ..self }
+    }
+
+    /// All starting with `velocity` (m/s).
+    #[must_use]
+    pub fn with_velocity(self, velocity: [f64; 3]) -> Self {
+        Self { velocity: Some(velocity), ..self }
+    }
 }
 
 /// Everything about a run but its particles.
@@ -203,6 +227,11 @@ impl Scene {
         let smallest = size.iter().copied().fold(f64::INFINITY, f64::min);
         if largest >= 0.5 * smallest {
             return Err(SceneError::new("particles.diameter", largest, "must be smaller than half the domain"));
+        }
+        if let Some(v) = injection.velocity {
+            for c in v {
+                finite("particles.velocity", c)?;
+            }
         }
         if let Some((lo, hi)) = injection.region {
             for a in 0..3 {

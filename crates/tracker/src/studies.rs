@@ -72,12 +72,7 @@ impl RoomStudy {
         let size = self.scene.geometry.size();
         let mut points = Vec::new();
         for (i, &d) in self.diameters.iter().enumerate() {
-            let injection = Injection {
-                count: self.count,
-                size: SizeDistribution::Monodisperse { diameter: d },
-                density: self.density,
-                region: None,
-            };
+            let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let result = run(&self.scene, &injection)?;
             let (from, to) = (0.5 * result.duration, result.duration);
             let v = |o| result.deposition_velocity(&result.walls_facing(o), from, to);
@@ -159,12 +154,7 @@ impl ChannelStudy {
         let mut points = Vec::new();
         for (i, &tp) in self.tau_plus.iter().enumerate() {
             let d = diameter_for_tau_plus(tp, self.density, air, u_star);
-            let injection = Injection {
-                count: self.count,
-                size: SizeDistribution::Monodisperse { diameter: d },
-                density: self.density,
-                region: None,
-            };
+            let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let result = run(&self.scene, &injection)?;
             let (from, to) = (0.5 * result.duration, result.duration);
             let all: Vec<usize> = (0..result.walls.len()).collect();

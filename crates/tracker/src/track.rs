@@ -300,7 +300,10 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     if TURB {
         zeta = [normal(&mut rng), normal(&mut rng), normal(&mut rng)];
     }
-    let mut v = fluid_velocity::<TURB>(field, p.size, x, &zeta) + body.settling;
+    let mut v = match p.injection.velocity {
+        Some(v) => DVec3::from_array(v),
+        None => fluid_velocity::<TURB>(field, p.size, x, &zeta) + body.settling,
+    };
     if BROWN {
         let sd = body.thermal_variance.sqrt();
         v += DVec3::new(normal(&mut rng), normal(&mut rng), normal(&mut rng)) * sd;

@@ -7,7 +7,7 @@ use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, Run, Scene, SizeD
 use depo_wall_model::{SizeDependence, WallLaw};
 
 fn mono(count: usize, diameter: f64) -> Injection {
-    Injection { count, size: SizeDistribution::Monodisperse { diameter }, density: 1000.0, region: None }
+    Injection::new(count, SizeDistribution::Monodisperse { diameter }, 1000.0)
 }
 
 /// Still air, floor only: the deposition velocity `J / C0` equals the Cunningham-corrected
@@ -54,7 +54,7 @@ fn brownian_mean_square_displacement_is_2dt() {
     let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.1, 10.0);
     scene.gravity = [0.0; 3];
     scene.brownian = true;
-    let injection = Injection { region: Some(([0.49; 3], [0.51; 3])), ..mono(40_000, d) };
+    let injection = mono(40_000, d).within([0.49; 3], [0.51; 3]);
     let result = run(&scene, &injection).unwrap();
     assert_eq!(result.balance().airborne, 40_000);
     let tau = aero.relaxation_time;
@@ -77,7 +77,7 @@ fn diffusion_onto_a_floor_follows_the_exact_solution() {
     scene.brownian = true;
     // Only the floor matters: the ceiling is as far as the diffusion length allows.
     let n = 40_000;
-    let result = run(&scene, &Injection { region: Some(([0.0; 3], [1.0, 1.0, height / 2.0])), ..mono(n, d) }).unwrap();
+    let result = run(&scene, &mono(n, d).within([0.0; 3], [1.0, 1.0, height / 2.0])).unwrap();
     let deposited = result.balance().deposited[0] as f64;
     // Cumulative flux: integrate J/C0 over time (midpoint rule on a fine grid; J ~ t^-1/2 at 0).
     let steps = 200_000;
@@ -126,12 +126,7 @@ fn busy_room() -> (Scene, Injection) {
     let law = WallLaw::preset("dunn1995-stainless").unwrap();
     scene.walls[0] = WallBehaviour::Law { law, size: Some(SizeDependence::new(8.6e-6, 1.51).unwrap()) };
     scene.walls[3] = WallBehaviour::Reflect;
-    let injection = Injection {
-        count: 3000,
-        size: SizeDistribution::LogNormal { median: 2e-6, geometric_sd: 2.5 },
-        density: 2000.0,
-        region: None,
-    };
+    let injection = Injection::new(3000, SizeDistribution::LogNormal { median: 2e-6, geometric_sd: 2.5 }, 2000.0);
     (scene, injection)
 }
 
