@@ -56,6 +56,7 @@ struct RunFile {
     seed: Option<u64>,
     brownian: Option<bool>,
     gravity: Option<f64>,
+    lift: Option<bool>,
 }
 
 #[derive(Deserialize, Default)]
@@ -245,6 +246,7 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
     set(&mut scene.duration, file.run.duration);
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
+    set(&mut scene.lift, file.run.lift);
     scene.gravity = gravity(file.run.gravity.unwrap_or(STANDARD_GRAVITY));
     if file.run.dt_plus.is_some() || file.run.duration_plus.is_some() {
         return Err(format!("{}: a room takes `run.dt` and `run.duration` in seconds", path.display()));
@@ -284,6 +286,7 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     }
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
+    set(&mut scene.lift, file.run.lift);
     scene.gravity = gravity(file.run.gravity.unwrap_or(0.0));
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
     set(&mut study.tau_plus, file.particles.tau_plus);

@@ -109,6 +109,9 @@ pub struct Scene {
     pub brownian: bool,
     /// The drag law.
     pub drag: Drag,
+    /// Saffman's shear lift from the mean flow's shear (channel flows with a mean profile only;
+    /// off by default).
+    pub lift: bool,
     /// One behaviour per wall, in the order of [`Geometry::walls`].
     pub walls: Vec<WallBehaviour>,
     /// The integrator.
@@ -137,6 +140,7 @@ impl Scene {
             flow: Flow::Still,
             brownian: false,
             drag: Drag::Stokes,
+            lift: false,
             walls,
             scheme: Scheme::Exponential,
             dt,
@@ -205,6 +209,13 @@ impl Scene {
                 positive("flow.core_time", core_time)?;
                 positive("flow.blend_length", blend_length)?;
             }
+        }
+        if self.lift && !matches!(self.flow, Flow::Poiseuille { .. } | Flow::TurbulentChannel { .. }) {
+            return Err(SceneError::new(
+                "lift",
+                1.0,
+                "needs a channel flow with a mean shear (Poiseuille or turbulent)",
+            ));
         }
         if injection.count == 0 {
             return Err(SceneError::new("particles.count", 0.0, "must be at least 1"));

@@ -29,3 +29,14 @@ fn room_deposition_matches_lai_nazaroff_where_it_is_measurable() {
     assert!((0.7..1.3).contains(&ratio), "3 um floor: ratio {ratio}");
     assert_eq!(coarse.ceiling.events, 0, "nothing settles upwards");
 }
+
+/// Saffman lift, optional: it raises deposition in the diffusion-impaction regime, where the
+/// random walk alone falls short of the correlations.
+#[test]
+fn saffman_lift_raises_channel_deposition_at_tau_plus_3() {
+    let mut study = ChannelStudy { tau_plus: vec![3.0], count: 2000, ..ChannelStudy::default() };
+    let without = study.run(|_| {}).unwrap()[0].v_plus;
+    study.scene.lift = true;
+    let with = study.run(|_| {}).unwrap()[0].v_plus;
+    assert!(with.events > 10 && with.value > 5.0 * without.value, "with {with:?}, without {without:?}");
+}

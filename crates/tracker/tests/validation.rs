@@ -163,3 +163,24 @@ fn results_do_not_depend_on_the_thread_count() {
     assert_ne!(run(&other, &injection).unwrap().records, one.records, "another seed, another run");
     assert!(one.records.iter().any(|r| matches!(r.fate, Fate::Deposited(_))));
 }
+
+/// Bad scenes are errors naming the field.
+#[test]
+fn scene_errors_name_the_field() {
+    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.01, 1.0);
+    let particles = mono(10, 1e-6);
+    scene.lift = true;
+    assert_eq!(run(&scene, &particles).unwrap_err().field, "lift");
+    scene.lift = false;
+    scene.dt = 0.0;
+    assert_eq!(run(&scene, &particles).unwrap_err().field, "dt");
+    scene.dt = 0.01;
+    scene.flow = Flow::TurbulentChannel { friction_velocity: 0.3 };
+    assert_eq!(run(&scene, &particles).unwrap_err().field, "flow");
+    scene.flow = Flow::Still;
+    assert_eq!(run(&scene, &mono(10, 0.6)).unwrap_err().field, "particles.diameter");
+    assert_eq!(run(&scene, &mono(0, 1e-6)).unwrap_err().field, "particles.count");
+    let err = run(&scene, &mono(10, 1e-6).with_velocity([f64::NAN, 0.0, 0.0])).unwrap_err();
+    assert_eq!(err.field, "particles.velocity");
+    assert!(err.to_string().contains("must be finite"));
+}
