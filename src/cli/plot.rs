@@ -64,7 +64,14 @@ fn chart(
     macro_rules! draw {
         ($chart:expr) => {{
             let mut chart = $chart.map_err(|e| fail(&e))?;
-            chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw().map_err(|e| fail(&e))?;
+            chart
+                .configure_mesh()
+                .x_desc(x_label)
+                .y_desc(y_label)
+                .x_label_formatter(&|v| tick(*v))
+                .y_label_formatter(&|v| tick(*v))
+                .draw()
+                .map_err(|e| fail(&e))?;
             for (i, s) in series.iter().enumerate() {
                 let color = colors[i % colors.len()];
                 if s.markers {
@@ -97,4 +104,18 @@ fn chart(
     }
     root.present().map_err(|e| fail(&e))?;
     Ok(())
+}
+
+/// A tick label: plain for moderate values, otherwise in e-notation with the rounding noise of
+/// log-scale tick positions (`9.999999e-5`) removed.
+fn tick(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || (1e-2..1e4).contains(&a) {
+        let s = format!("{v:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        let s = format!("{v:.2e}");
+        let (mantissa, exponent) = s.split_once('e').expect("e-notation");
+        format!("{}e{exponent}", mantissa.trim_end_matches('0').trim_end_matches('.'))
+    }
 }

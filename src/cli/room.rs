@@ -183,7 +183,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
         std::fs::create_dir_all(&args.plot).map_err(|e| format!("cannot create {}: {e}", args.plot.display()))?;
         let series = |name: &str, pick: &dyn Fn(&Row) -> f64, markers: bool| Series {
             name: name.to_string(),
-            points: rows.iter().map(|r| (r.diameter_um, pick(r))).filter(|p| p.1 > 0.0).collect(),
+            // Below 1e-10 m/s (the model's ceiling for coarse particles reaches 1e-138) is
+            // nothing a room shows; such points are left off the log axis.
+            points: rows.iter().map(|r| (r.diameter_um, pick(r))).filter(|p| p.1 > 1e-10).collect(),
             markers,
         };
         let deposition = args.plot.join("room-deposition.svg");
