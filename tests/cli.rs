@@ -253,6 +253,15 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     for key in ["floor", "ceiling", "walls"] {
         assert!(ten[key]["value"].as_f64().is_some() && ten["lai_nazaroff"][key].as_f64().is_some());
     }
+    // The floor law's tallies: every deposit came through a capture or a resting bounce.
+    let tally = &ten["wall_tally"];
+    let floor = ten["floor"]["events"].as_u64().unwrap();
+    assert!(tally["captures"].as_u64().unwrap() + tally["resting"].as_u64().unwrap() >= floor, "{tally}");
+    assert!(tally["contacts"].as_u64().unwrap() >= tally["captures"].as_u64().unwrap());
+    let map = std::fs::read_to_string(plots.join("room-floor-map-10um.csv")).unwrap();
+    assert_eq!(map.lines().count(), 20);
+    let mapped: u64 = map.lines().flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum();
+    assert!(mapped >= floor, "the map holds every floor deposit of the run: {mapped} < {floor}");
     for figure in ["room-deposition.svg", "room-beta.svg"] {
         assert!(std::fs::read_to_string(plots.join(figure)).unwrap().contains("<svg"), "{figure}");
     }

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::room::Measured;
+use super::room::{Measured, Tally};
 use super::{scene_file, Error, Format};
 
 #[derive(ClapArgs, Debug)]
@@ -37,6 +37,7 @@ struct Row {
     papavergos_hedley: f64,
     ratio_to_wood: f64,
     particle_steps: u64,
+    wall_tally: Tally,
 }
 
 #[derive(Serialize)]
@@ -78,6 +79,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             papavergos_hedley: p.papavergos_hedley,
             ratio_to_wood: p.v_plus.value / p.wood,
             particle_steps: p.particle_steps,
+            wall_tally: p.tally.into(),
         })
         .collect();
     let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();

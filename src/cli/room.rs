@@ -4,8 +4,9 @@
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
+use depo::tracker::studies::MAP_BINS;
 use depo::tracker::studies::{RoomPoint, RoomStudy};
-use depo::tracker::{Estimate, Flow, Geometry};
+use depo::tracker::{Estimate, Flow, Geometry, WallTally};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
@@ -49,6 +50,34 @@ struct Model {
     beta_per_hour: f64,
 }
 
+/// A run's wall-law tallies, summed over the surfaces; energy in J.
+#[derive(Serialize)]
+pub struct Tally {
+    pub contacts: u64,
+    pub rebounds: u64,
+    pub captures: u64,
+    pub resting: u64,
+    pub energy_lost_material: f64,
+    pub energy_lost_adhesion: f64,
+    pub energy_lost_friction: f64,
+    pub energy_deposited: f64,
+}
+
+impl From<WallTally> for Tally {
+    fn from(t: WallTally) -> Self {
+        Self {
+            contacts: t.contacts,
+            rebounds: t.rebounds,
+            captures: t.captures,
+            resting: t.resting,
+            energy_lost_material: t.energy.material,
+            energy_lost_adhesion: t.energy.adhesion,
+            energy_lost_friction: t.energy.friction,
+            energy_deposited: t.energy.deposition,
+        }
+    }
+}
+
 #[derive(Serialize)]
 struct Row {
     diameter_um: f64,
@@ -58,6 +87,9 @@ struct Row {
     beta_per_hour: Measured,
     lai_nazaroff: Model,
     particle_steps: u64,
+    wall_tally: Tally,
+    #[serde(skip)]
+    floor_map: Vec<u32>,
 }
 
 #[derive(Serialize)]
@@ -84,6 +116,8 @@ fn row(p: &RoomPoint) -> Row {
             beta_per_hour: p.model_beta * 3600.0,
         },
         particle_steps: p.particle_steps,
+        wall_tally: p.tally.into(),
+        floor_map: p.floor_map.clone(),
     }
 }
 
@@ -214,7 +248,26 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 series("Lai & Nazaroff (2000)", &|r| r.lai_nazaroff.beta_per_hour, false),
             ],
         )?;
-        eprintln!("figures: {} and {}", deposition.display(), beta.display());
+        // Floor deposition maps, one CSV per size: rows along x, columns along y.
+        for r in &rows {
+            let label = (r.diameter_um * 1e4).round() / 1e4;
+            let path = args.plot.join(format!("room-floor-map-{label}um.csv"));
+            let mut text = String::new();
+            for row in r.floor_map.chunks(MAP_BINS[1]) {
+                let cells: Vec<String> = row.iter().map(u32::to_string).collect();
+                text.push_str(&cells.join(","));
+                text.push('\n');
+            }
+            std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        }
+        eprintln!(
+            "figures: {} and {}; floor deposition maps ({}x{} cells over x and y): {}/room-floor-map-*.csv",
+            deposition.display(),
+            beta.display(),
+            MAP_BINS[0],
+            MAP_BINS[1],
+            args.plot.display()
+        );
     }
     Ok(())
 }

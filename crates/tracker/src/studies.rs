@@ -12,6 +12,7 @@ use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
 use crate::run::{run, Estimate};
 use crate::scene::{Injection, Scene, SceneError, SizeDistribution};
+use crate::track::WallTally;
 
 /// A room study: one run per diameter in `scene` (a room with a turbulent-room flow).
 #[derive(Clone, Debug, PartialEq)]
@@ -62,6 +63,21 @@ pub struct RoomPoint {
     pub model_beta: f64,
     /// Particle-steps the run took.
     pub particle_steps: u64,
+    /// The wall-law tallies summed over all surfaces.
+    pub tally: WallTally,
+    /// Deposits on the floor on a [`MAP_BINS`] grid over `x` (rows) and `y` (columns).
+    pub floor_map: Vec<u32>,
+}
+
+/// The floor deposition map's grid.
+pub const MAP_BINS: [usize; 2] = [20, 20];
+
+fn total(tallies: &[WallTally]) -> WallTally {
+    let mut sum = WallTally::default();
+    for t in tallies {
+        sum += *t;
+    }
+    sum
 }
 
 impl RoomStudy {
@@ -86,6 +102,8 @@ impl RoomStudy {
                 model,
                 model_beta: model.loss_rate(size),
                 particle_steps: result.particle_steps(),
+                tally: total(&result.tallies),
+                floor_map: result.deposition_map(0, size, MAP_BINS),
             });
             progress(i + 1);
         }
@@ -144,6 +162,8 @@ pub struct ChannelPoint {
     pub papavergos_hedley: f64,
     /// Particle-steps the run took.
     pub particle_steps: u64,
+    /// The wall-law tallies summed over both walls.
+    pub tally: WallTally,
 }
 
 impl ChannelStudy {
@@ -168,6 +188,7 @@ impl ChannelStudy {
                 wood: wood(tp, sc),
                 papavergos_hedley: papavergos_hedley(tp, sc),
                 particle_steps: result.particle_steps(),
+                tally: total(&result.tallies),
             });
             progress(i + 1);
         }

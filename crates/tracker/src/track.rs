@@ -40,7 +40,7 @@ use depo_wall_model::energy::{energy_loss, EnergyLoss};
 use glam::DVec3;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{Rng, RngExt, SeedableRng};
-use rand_distr::StandardNormal;
+use rand_distr::{Distribution, LogNormal, StandardNormal};
 
 use crate::air::{schiller_naumann, Aerodynamics};
 use crate::flow::FlowField;
@@ -262,9 +262,10 @@ fn sample_diameter(size: SizeDistribution, rng: &mut impl Rng) -> f64 {
     match size {
         SizeDistribution::Monodisperse { diameter } => diameter,
         SizeDistribution::LogNormal { median, geometric_sd } => {
-            // Truncated at 5 geometric standard deviations, as Scene::validate assumes.
-            let z: f64 = normal(rng).clamp(-5.0, 5.0);
-            median * (z * geometric_sd.ln()).exp()
+            // Clamped to 5 geometric standard deviations, as Scene::validate assumes.
+            let spread = geometric_sd.powi(5);
+            let d: f64 = LogNormal::new(median.ln(), geometric_sd.ln()).expect("validated").sample(rng);
+            d.clamp(median / spread, median * spread)
         }
     }
 }

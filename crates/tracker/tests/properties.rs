@@ -1,9 +1,7 @@
 //! Invariants over random scenes: every particle is accounted for, nothing becomes NaN, airborne
 //! particles stay inside the domain and deposited ones sit on the wall that took them.
 
-use depo_tracker::{
-    run, Drag, Fate, Flow, Geometry, Injection, Scene, Scheme, SizeDistribution, WallBehaviour,
-};
+use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
 use depo_wall_model::{SizeDependence, WallLaw};
 use proptest::prelude::*;
 
@@ -17,34 +15,36 @@ fn scene_strategy() -> impl Strategy<Value = (Scene, Injection)> {
         (0usize..3, -5.0f64..-0.5),
         any::<u64>(),
     )
-        .prop_map(|(size, channel, flow, (log_d, density), (brownian, finite_re, euler), (walls, log_dt), seed)| {
-            let geometry = if channel {
-                Geometry::Channel { length: size.0, width: size.1, height: size.2 }
-            } else {
-                Geometry::Room { size: [size.0, size.1, size.2] }
-            };
-            let mut scene = Scene::new(geometry, 10f64.powf(log_dt), 40.0 * 10f64.powf(log_dt));
-            scene.flow = match (channel, flow) {
-                (_, 0) => Flow::Still,
-                (true, 1) => Flow::Poiseuille { max_speed: 2.0 },
-                (true, _) => Flow::TurbulentChannel { friction_velocity: 0.3 },
-                (false, 1) => Flow::Uniform { velocity: [0.3, -0.2, 0.1] },
-                (false, _) => Flow::indoor_room(),
-            };
-            scene.brownian = brownian;
-            scene.drag = if finite_re { Drag::SchillerNaumann } else { Drag::Stokes };
-            scene.scheme = if euler { Scheme::Euler } else { Scheme::Exponential };
-            scene.lift = channel && flow >= 1;
-            let law = WallLaw::preset("li1997-sio2").unwrap();
-            scene = scene.with_walls(match walls {
-                0 => WallBehaviour::Sink,
-                1 => WallBehaviour::Reflect,
-                _ => WallBehaviour::Law { law, size: Some(SizeDependence::new(70e-6, 1.51).unwrap()) },
-            });
-            scene.seed = seed;
-            let d = 10f64.powf(log_d);
-            (scene, Injection::new(24, SizeDistribution::Monodisperse { diameter: d }, density))
-        })
+        .prop_map(
+            |(size, channel, flow, (log_d, density), (brownian, finite_re, euler), (walls, log_dt), seed)| {
+                let geometry = if channel {
+                    Geometry::Channel { length: size.0, width: size.1, height: size.2 }
+                } else {
+                    Geometry::Room { size: [size.0, size.1, size.2] }
+                };
+                let mut scene = Scene::new(geometry, 10f64.powf(log_dt), 40.0 * 10f64.powf(log_dt));
+                scene.flow = match (channel, flow) {
+                    (_, 0) => Flow::Still,
+                    (true, 1) => Flow::Poiseuille { max_speed: 2.0 },
+                    (true, _) => Flow::TurbulentChannel { friction_velocity: 0.3 },
+                    (false, 1) => Flow::Uniform { velocity: [0.3, -0.2, 0.1] },
+                    (false, _) => Flow::indoor_room(),
+                };
+                scene.brownian = brownian;
+                scene.drag = if finite_re { Drag::SchillerNaumann } else { Drag::Stokes };
+                scene.scheme = if euler { Scheme::Euler } else { Scheme::Exponential };
+                scene.lift = channel && flow >= 1;
+                let law = WallLaw::preset("li1997-sio2").unwrap();
+                scene = scene.with_walls(match walls {
+                    0 => WallBehaviour::Sink,
+                    1 => WallBehaviour::Reflect,
+                    _ => WallBehaviour::Law { law, size: Some(SizeDependence::new(70e-6, 1.51).unwrap()) },
+                });
+                scene.seed = seed;
+                let d = 10f64.powf(log_d);
+                (scene, Injection::new(24, SizeDistribution::Monodisperse { diameter: d }, density))
+            },
+        )
 }
 
 proptest! {

@@ -184,3 +184,19 @@ fn scene_errors_name_the_field() {
     assert_eq!(err.field, "particles.velocity");
     assert!(err.to_string().contains("must be finite"));
 }
+
+/// Lognormal injection: the sizes have the asked count median and geometric standard deviation.
+#[test]
+fn lognormal_sizes_have_their_median_and_spread() {
+    let scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.01, 0.0);
+    let injection = Injection::new(20_000, SizeDistribution::LogNormal { median: 1e-6, geometric_sd: 2.0 }, 1000.0);
+    let result = run(&scene, &injection).unwrap();
+    let mut logs: Vec<f64> = result.records.iter().map(|r| r.diameter.ln()).collect();
+    logs.sort_by(f64::total_cmp);
+    let median = logs[logs.len() / 2].exp();
+    let mean = logs.iter().sum::<f64>() / logs.len() as f64;
+    let gsd = (logs.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / (logs.len() - 1) as f64).sqrt().exp();
+    assert!((median / 1e-6 - 1.0).abs() < 0.03, "median {median}");
+    assert!((gsd / 2.0 - 1.0).abs() < 0.02, "gsd {gsd}");
+    assert!(result.records.iter().all(|r| r.diameter >= 1e-6 / 32.0 && r.diameter <= 32e-6));
+}
