@@ -5,7 +5,7 @@
 //!
 //! - [`wall_model`]: the law, 3-D impacts and structure-of-arrays batches.
 //! - [`tracker`]: particle transport in rooms and channels with the law at every wall contact.
-//! - [`bench`]: kernel throughput as a fraction of a copy kernel moving the same bytes.
+//! - [`bench`](mod@bench): kernel throughput as a fraction of a copy kernel moving the same bytes.
 pub use depo_tracker as tracker;
 pub use depo_wall_model as wall_model;
 

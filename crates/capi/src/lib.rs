@@ -7,7 +7,7 @@
 //! Conventions, after rustls-ffi:
 //! - Every function returns an `int32_t` status (`DEPO_OK`, `DEPO_ERR_*`); the message of the
 //!   last failure on the calling thread is `depo_last_error()`.
-//! - Every exported body runs inside [`ffi_guard!`]: a panic becomes `DEPO_ERR_PANIC` with its
+//! - Every exported body runs inside `ffi_guard!`: a panic becomes `DEPO_ERR_PANIC` with its
 //!   message kept, never an unwind into the host solver.
 //! - Handles are opaque; `depo_law_new`/`depo_law_preset` make one, `depo_law_free` takes NULL.
 //!   The handle comes first, then inputs, then outputs.

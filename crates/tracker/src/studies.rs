@@ -4,7 +4,7 @@
 //!
 //! Both measure the deposition velocity over the second half of the run (the first half lets
 //! the near-wall concentration settle from the uniform injection), as deposits per area and
-//! time over the mean airborne concentration (see [`crate::run`]).
+//! time over the mean airborne concentration (see [`crate::run`](mod@crate::run)).
 
 use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
