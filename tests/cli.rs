@@ -334,3 +334,12 @@ fn bench_integrators_reports_first_order_and_euler_instability() {
         rows.iter().find(|r| r["scheme"] == "exponential" && r["dt_over_tau"].as_f64().unwrap() > 2.0).unwrap();
     assert!(exp_large["relative_error"].as_f64().unwrap() < 0.1);
 }
+
+#[test]
+fn the_example_data_fit_back_to_their_preset() {
+    let fit = ok_json(&["fit", "examples/li1997-synthetic.csv", "--q", "0.5", "--format", "json"]);
+    let (low, high) = (fit["vc_low"].as_f64().unwrap(), fit["vc_high"].as_f64().unwrap());
+    assert!(low <= 0.074 && 0.074 <= high, "{fit}");
+    assert!((fit["k"].as_f64().unwrap() / 12.5 - 1.0).abs() < 0.05, "{fit}");
+    assert!(fit["fitting_index"].as_f64().unwrap() > 0.98);
+}
