@@ -270,6 +270,44 @@ fn sample_diameter(size: SizeDistribution, rng: &mut impl Rng) -> f64 {
     }
 }
 
+/// A particle as injected: its constants, where and how it starts, and its random stream.
+struct Injected {
+    body: Body,
+    start: [f64; 3],
+    x: [f64; 3],
+    v: [f64; 3],
+    zeta: [f64; 3],
+    rng: Xoshiro256PlusPlus,
+}
+
+/// Particle `id` at `t = 0`: size, position, velocity (and fluctuation) from its own stream.
+fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
+    let mut rng = particle_rng(p.scene.seed, id);
+    let diameter = sample_diameter(p.injection.size, &mut rng);
+    let body = Body::new(p, diameter, 1.0);
+    let r = body.radius;
+    let (lo, hi) = p.injection.region.unwrap_or(([0.0; 3], p.size));
+    let mut start = [0.0; 3];
+    for a in 0..3 {
+        let (l, h) = if p.walled[a] { (lo[a].max(r), hi[a].min(p.size[a] - r)) } else { (lo[a], hi[a]) };
+        start[a] = if h > l { rng.random_range(l..h) } else { 0.5 * (l + h) };
+    }
+    let x = DVec3::from_array(start);
+    let mut zeta = [0.0; 3];
+    if turb {
+        zeta = [normal(&mut rng), normal(&mut rng), normal(&mut rng)];
+    }
+    let mut v = match p.injection.velocity {
+        Some(v) => DVec3::from_array(v),
+        None => fluid_velocity::<true>(&p.field, p.size, x, &zeta) + body.settling,
+    };
+    if brown {
+        let sd = body.thermal_variance.sqrt();
+        v += DVec3::new(normal(&mut rng), normal(&mut rng), normal(&mut rng)) * sd;
+    }
+    Injected { body, start, x: start, v: v.to_array(), zeta, rng }
+}
+
 fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
     p: &Prepared<'_>,
     id: u64,
@@ -279,32 +317,10 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     let field = &p.field;
     let dt = scene.dt;
     let nu = scene.air.kinematic_viscosity();
-    let mut rng = particle_rng(scene.seed, id);
-
-    // Injection.
-    let diameter = sample_diameter(p.injection.size, &mut rng);
-    let mut body = Body::new(p, diameter, 1.0);
+    let Injected { mut body, start, x, v, zeta, mut rng } = inject(p, id, TURB, BROWN);
+    let (mut x, mut v, mut zeta) = (DVec3::from_array(x), DVec3::from_array(v), zeta);
+    let diameter = body.aero.diameter;
     let r = body.radius;
-    let (lo, hi) = p.injection.region.unwrap_or(([0.0; 3], p.size));
-    let mut start = [0.0; 3];
-    for a in 0..3 {
-        let (l, h) = if p.walled[a] { (lo[a].max(r), hi[a].min(p.size[a] - r)) } else { (lo[a], hi[a]) };
-        start[a] = if h > l { rng.random_range(l..h) } else { 0.5 * (l + h) };
-    }
-    // The state lives in locals (registers) in the hot loop; only a contact takes it elsewhere.
-    let mut x = DVec3::from_array(start);
-    let mut zeta = [0.0; 3];
-    if TURB {
-        zeta = [normal(&mut rng), normal(&mut rng), normal(&mut rng)];
-    }
-    let mut v = match p.injection.velocity {
-        Some(v) => DVec3::from_array(v),
-        None => fluid_velocity::<TURB>(field, p.size, x, &zeta) + body.settling,
-    };
-    if BROWN {
-        let sd = body.thermal_variance.sqrt();
-        v += DVec3::new(normal(&mut rng), normal(&mut rng), normal(&mut rng)) * sd;
-    }
     let base = body;
     // Saffman's lift per unit relative velocity and root shear rate, (9.69/pi) sqrt(rho mu) /
     // (rho_p d).
