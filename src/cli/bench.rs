@@ -121,14 +121,26 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
         }
     }
     if let Some(path) = &args.plot {
-        // Run time against error: each kernel a point (error floored at 1e-17 for the log axis).
-        let series: Vec<Series> = rows
+        // Run time against error: each kernel a point (error floored at 1e-17 for the log axis),
+        // one series per precision and power function; the table names each point.
+        let groups = [
+            ("f64, exponents 1 and 1/2", "f64", false),
+            ("f64, general exponents", "f64", true),
+            ("f32, exponents 1 and 1/2", "f32", false),
+            ("f32, general exponents", "f32", true),
+        ];
+        let series: Vec<Series> = groups
             .iter()
-            .map(|r| Series {
-                name: r.kernel.clone(),
-                points: vec![(r.max_error.max(1e-17), r.fraction_of_ceiling)],
+            .map(|&(name, precision, general)| Series {
+                name: name.to_string(),
+                points: rows
+                    .iter()
+                    .filter(|r| r.kernel.starts_with(precision) && r.kernel.contains("pow") == general)
+                    .map(|r| (r.max_error.max(1e-17), r.fraction_of_ceiling))
+                    .collect(),
                 markers: true,
             })
+            .filter(|s| !s.points.is_empty())
             .collect();
         plot_points(path, &series)?;
     }
