@@ -53,8 +53,11 @@ const KARMAN: f64 = 0.41;
 const ROOM_PEAK_Y_PLUS: f64 = 67.0;
 /// The fits' range.
 const FIT_MAX_Y_PLUS: f64 = 200.0;
-/// Nodes of the tabulated profiles (uniform in `sqrt(y)`).
-const TABLE_NODES: usize = 4096;
+/// Cells of each of a table's two grids.
+const TABLE_CELLS: usize = 4096;
+/// Where a turbulent profile's fine grid ends, in wall units: the viscous and buffer layers
+/// and the room profile's peak (`y+ = 67`).
+const FINE_Y_PLUS: f64 = 100.0;
 
 /// Reichardt's mean velocity `U+` at `y+`.
 #[must_use]
@@ -152,20 +155,29 @@ pub(crate) struct Node {
     pub drift_gain: f64,
 }
 
-/// A profile of the distance `y` to the nearer wall, tabulated once per run on nodes uniform
-/// in `sqrt(y)` (fine at the wall, where the profiles change fastest): `sigma` interpolated
-/// linearly in the hot loop, the rest taken from the cell's lower node.
+/// A profile of the distance `y` to the nearer wall, tabulated once per run on two uniform
+/// grids, a fine one across the near-wall layer (where the profiles change fastest) and a
+/// coarser one beyond: `sigma` interpolated linearly in the hot loop, the rest taken from the
+/// cell's lower node. The cell index is a multiply and a truncation, with no square root or
+/// logarithm on the particle step's critical path.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Table {
-    inv_ds: f64,
+    split: f64,
+    inv_fine: f64,
+    inv_coarse: f64,
     nodes: Vec<Node>,
 }
 
 impl Table {
-    /// Tabulates `sigma(y)` and `T_L(y)` on `[0, y_max]` for time step `dt`.
-    fn new(y_max: f64, dt: f64, f: impl Fn(f64) -> (f64, f64)) -> Self {
-        let ds = y_max.sqrt() / (TABLE_NODES - 1) as f64;
-        let ys: Vec<f64> = (0..TABLE_NODES).map(|i| (i as f64 * ds).powi(2)).collect();
+    /// Tabulates `sigma(y)` and `T_L(y)` on `[0, y_max]` for time step `dt`, finely up to
+    /// `y_split` (clamped into `(0, y_max)`).
+    fn new(y_max: f64, y_split: f64, dt: f64, f: impl Fn(f64) -> (f64, f64)) -> Self {
+        let split = y_split.clamp(1e-3 * y_max, 0.5 * y_max);
+        let (fine, coarse) = (split / TABLE_CELLS as f64, (y_max - split) / TABLE_CELLS as f64);
+        let ys: Vec<f64> = (0..=TABLE_CELLS)
+            .map(|i| i as f64 * fine)
+            .chain((1..=TABLE_CELLS).map(|j| split + j as f64 * coarse))
+            .collect();
         let mut nodes: Vec<Node> = ys
             .iter()
             .map(|&y| {
@@ -180,16 +192,18 @@ impl Table {
                 }
             })
             .collect();
-        for i in 0..TABLE_NODES - 1 {
+        for i in 0..nodes.len() - 1 {
             nodes[i].slope = (nodes[i + 1].sigma - nodes[i].sigma) / (ys[i + 1] - ys[i]);
         }
-        Self { inv_ds: 1.0 / ds, nodes }
+        Self { split, inv_fine: 1.0 / fine, inv_coarse: 1.0 / coarse, nodes }
     }
 
     /// The profile at distance `y >= 0` (m), clamped to the table's range.
     #[inline(always)]
     pub fn at(&self, y: f64) -> Node {
-        let s = y.max(0.0).sqrt() * self.inv_ds;
+        let y = y.max(0.0);
+        let s =
+            if y < self.split { y * self.inv_fine } else { TABLE_CELLS as f64 + (y - self.split) * self.inv_coarse };
         let last = self.nodes.len() - 2;
         let i = (s as usize).min(last);
         let f = (s - i as f64).min(1.0);
@@ -231,14 +245,16 @@ impl FlowField {
             Flow::Uniform { velocity } => field.uniform = velocity,
             Flow::Poiseuille { max_speed } => {
                 let h = size[2];
-                field.profile = Some(Table::new(half[2], dt, |y| (4.0 * max_speed * y * (h - y) / (h * h), 0.0)));
+                field.profile =
+                    Some(Table::new(half[2], 0.25 * half[2], dt, |y| (4.0 * max_speed * y * (h - y) / (h * h), 0.0)));
             }
             Flow::TurbulentChannel { friction_velocity: us } => {
                 let plus = us / nu;
                 let time = nu / (us * us);
-                field.profile = Some(Table::new(half[2], dt, |y| (us * reichardt(y * plus), 0.0)));
+                let split = FINE_Y_PLUS / plus;
+                field.profile = Some(Table::new(half[2], split, dt, |y| (us * reichardt(y * plus), 0.0)));
                 let comp = |rms: fn(f64) -> f64, drift: bool| Component {
-                    table: Table::new(half[2], dt, |y| (us * rms(y * plus), time * lagrangian_time(y * plus))),
+                    table: Table::new(half[2], split, dt, |y| (us * rms(y * plus), time * lagrangian_time(y * plus))),
                     axis: 2,
                     drift: drift && drift_correction,
                 };
@@ -260,7 +276,9 @@ impl FlowField {
                     }
                 };
                 let y_max = half.iter().copied().fold(0.0, f64::max);
-                let comp = |axis| Component { table: Table::new(y_max, dt, profile), axis, drift: drift_correction };
+                let split = FINE_Y_PLUS / plus;
+                let comp =
+                    |axis| Component { table: Table::new(y_max, split, dt, profile), axis, drift: drift_correction };
                 field.turbulence = Some([comp(0), comp(1), comp(2)]);
             }
         }
@@ -290,7 +308,7 @@ mod tests {
 
     #[test]
     fn table_interpolates_within_a_cell_and_clamps_outside() {
-        let t = Table::new(1.0, 0.1, |y| (y * y, 1.0));
+        let t = Table::new(1.0, 0.25, 0.1, |y| (y * y, 1.0));
         for y in [0.0, 1e-6, 0.01, 0.3, 0.999] {
             assert!((t.at(y).sigma - y * y).abs() < 1e-5, "{y}");
             assert!((t.at(y).slope - 2.0 * y).abs() < 2e-3, "{y}: {}", t.at(y).slope);
