@@ -32,7 +32,7 @@ pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
         .map(|c| {
             let mut tally = vec![WallTally::default(); walls.len()];
             let ids = c * CHUNK..((c + 1) * CHUNK).min(injection.count);
-            let records = ids.map(|id| track(&prepared, id as u64, &mut tally)).collect();
+            let records = track(&prepared, ids, &mut tally);
             (records, tally)
         })
         .collect();
