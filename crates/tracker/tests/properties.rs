@@ -86,3 +86,33 @@ proptest! {
         }
     }
 }
+
+/// Extreme but valid inputs: nanometre and millimetre particles, time steps from 1e-7 s to
+/// 10 s, light and heavy materials, in still air, a turbulent room and a turbulent channel, with
+/// Brownian motion: no NaN, no escapes, every particle accounted for.
+#[test]
+fn extreme_scenes_stay_finite() {
+    for &(d, dt, density) in
+        &[(1e-9, 1e-7, 1.0), (1e-9, 10.0, 1e5), (1e-3, 1e-7, 1e5), (1e-3, 10.0, 1.0), (3e-8, 0.5, 2000.0)]
+    {
+        for flow in [Flow::Still, Flow::indoor_room(), Flow::TurbulentChannel { friction_velocity: 0.5 }] {
+            let channel = matches!(flow, Flow::TurbulentChannel { .. });
+            let geometry = if channel {
+                Geometry::Channel { length: 0.1, width: 0.1, height: 0.02 }
+            } else {
+                Geometry::Room { size: [0.5, 0.5, 0.5] }
+            };
+            let law = WallLaw::preset("dunn1995-copper").unwrap();
+            let mut scene = Scene::new(geometry, dt, 20.0 * dt).with_walls(WallBehaviour::Law { law, size: None });
+            scene.flow = flow;
+            scene.brownian = true;
+            let injection = Injection::new(40, SizeDistribution::Monodisperse { diameter: d }, density);
+            let result = run(&scene, &injection).unwrap();
+            let b = result.balance();
+            assert_eq!(b.airborne + b.deposited.iter().sum::<usize>(), 40, "d {d} dt {dt} rho {density} {flow:?}");
+            assert_eq!(b.escaped, 0, "d {d} dt {dt} rho {density} {flow:?}");
+            assert!(result.records.iter().all(|r| r.position.iter().all(|c| c.is_finite())));
+            assert!(result.tallies.iter().all(|t| t.energy.total().is_finite()));
+        }
+    }
+}
