@@ -30,7 +30,7 @@ pub enum Drag {
     #[default]
     Stokes,
     /// Stokes drag times the Schiller-Naumann factor `1 + 0.15 Re_p^0.687`, evaluated at the
-    /// start of each step (costs an `exp` and a `powf` per particle-step).
+    /// start of each step (costs a `powf` and a few `exp` per particle-step).
     SchillerNaumann,
 }
 

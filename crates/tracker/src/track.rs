@@ -148,6 +148,10 @@ impl<'a> Prepared<'a> {
 struct Body {
     aero: Aerodynamics,
     radius: f64,
+    /// Gravity with buoyancy, `g (1 - rho/rho_p)`, m/s^2.
+    gravity: DVec3,
+    /// Drag relaxation time, s.
+    tau: f64,
     /// Settling velocity vector `tau g (1 - rho/rho_p)`, m/s.
     settling: DVec3,
     /// `exp(-dt / tau)`.
@@ -184,28 +188,36 @@ fn brownian_coefficients(h: f64, tau: f64, kt_m: f64) -> [f64; 3] {
 }
 
 impl Body {
-    fn new(p: &Prepared<'_>, diameter: f64, tau_scale: f64) -> Self {
+    fn new(p: &Prepared<'_>, diameter: f64) -> Self {
         let scene = p.scene;
         let g = DVec3::from_array(scene.gravity);
         let aero = Aerodynamics::new(diameter, p.injection.density, &scene.air, g.length());
-        let tau = aero.relaxation_time / tau_scale;
         let buoyancy = 1.0 - scene.air.density / p.injection.density;
-        let h = scene.dt / tau;
-        let decay = (-h).exp();
         let kt = aero.thermal_variance(&scene.air);
-        Self {
+        let mut body = Self {
             aero,
             radius: 0.5 * diameter,
-            settling: g * (tau * buoyancy),
-            decay,
-            relax: tau * -(-h).exp_m1(),
-            brownian: brownian_coefficients(h, tau, kt),
+            gravity: g * buoyancy,
+            tau: 0.0,
+            settling: DVec3::ZERO,
+            decay: 0.0,
+            relax: 0.0,
+            brownian: [0.0; 3],
             thermal_variance: kt,
-        }
+        };
+        body.relax_in(aero.relaxation_time, scene.dt);
+        body
     }
 
-    fn tau(&self) -> f64 {
-        self.relax / (1.0 - self.decay)
+    /// Sets the relaxation time to `tau` (s) and what follows from it for steps of `dt`.
+    #[inline(always)]
+    fn relax_in(&mut self, tau: f64, dt: f64) {
+        let h = dt / tau;
+        self.tau = tau;
+        self.settling = self.gravity * tau;
+        self.decay = (-h).exp();
+        self.relax = tau * -(-h).exp_m1();
+        self.brownian = brownian_coefficients(h, tau, self.thermal_variance);
     }
 }
 
@@ -293,7 +305,7 @@ struct Injected {
 fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
     let mut rng = particle_rng(p.scene.seed, id);
     let diameter = sample_diameter(p.injection.size, &mut rng);
-    let body = Body::new(p, diameter, 1.0);
+    let body = Body::new(p, diameter);
     let r = body.radius;
     let (lo, hi) = p.injection.region.unwrap_or(([0.0; 3], p.size));
     let mut start = [0.0; 3];
@@ -356,13 +368,11 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
         };
         if FINITE_RE {
             let re = (uf - v).length() * diameter / nu;
-            body = Body::new(p, diameter, schiller_naumann(re));
-            // Thermal variance does not depend on drag; keep the injected one.
-            body.thermal_variance = base.thermal_variance;
+            body.relax_in(base.tau / schiller_naumann(re), dt);
         }
         let mut v_inf = uf + body.settling;
         if LIFT {
-            v_inf.z += body.tau() * saffman_lift(field, p.size, x, uf, v, lift_coefficient);
+            v_inf.z += body.tau * saffman_lift(field, p.size, x, uf, v, lift_coefficient);
         }
         let (bx, bv) = if BROWN {
             let mut bx = DVec3::ZERO;
@@ -371,7 +381,7 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
                 let (za, zb) = (normal(&mut rng), normal(&mut rng));
                 if EULER {
                     // Euler-Maruyama: velocity kick of variance 2 kT/m dt/tau; position from v.
-                    bv[a] = (2.0 * body.thermal_variance * dt / body.tau()).sqrt() * za;
+                    bv[a] = (2.0 * body.thermal_variance * dt / body.tau).sqrt() * za;
                 } else {
                     bx[a] = body.brownian[0] * za;
                     bv[a] = body.brownian[1] * za + body.brownian[2] * zb;
@@ -382,7 +392,7 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
             (DVec3::ZERO, DVec3::ZERO)
         };
         let flight =
-            Flight::<EULER> { x0: x, v0: v, v_inf, tau: body.tau(), decay: body.decay, relax: body.relax, dt, bx, bv };
+            Flight::<EULER> { x0: x, v0: v, v_inf, tau: body.tau, decay: body.decay, relax: body.relax, dt, bx, bv };
         let (x1, v1) = flight.end();
         if inside(x1, r, p) {
             x = wrap(x1, p);
@@ -498,7 +508,7 @@ impl<const EULER: bool> Flight<EULER> {
         } else {
             let e = (-t / self.tau).exp();
             let dv = self.v0 - self.v_inf;
-            let relax = if self.tau > 0.0 { self.tau * (1.0 - e) } else { 0.0 };
+            let relax = if self.tau > 0.0 { self.tau * -(-t / self.tau).exp_m1() } else { 0.0 };
             (self.x0 + self.v_inf * t + dv * relax + self.bx * share, self.v_inf + dv * e + self.bv * share)
         }
     }

@@ -87,13 +87,21 @@ proptest! {
     }
 }
 
-/// Extreme but valid inputs: nanometre and millimetre particles, time steps from 1e-7 s to
+/// Extreme but valid inputs: nanometre and millimetre particles, time steps from 1e-14 s to
 /// 10 s, light and heavy materials, in still air, a turbulent room and a turbulent channel, with
 /// Brownian motion: no NaN, no escapes, every particle accounted for.
 #[test]
 fn extreme_scenes_stay_finite() {
     for &(d, dt, density) in
-        &[(1e-9, 1e-7, 1.0), (1e-9, 10.0, 1e5), (1e-3, 1e-7, 1e5), (1e-3, 10.0, 1.0), (3e-8, 0.5, 2000.0)]
+        // The fourth: dt / tau below 1e-16, where exp(-dt / tau) rounds to exactly 1.
+        &[
+            (1e-9, 1e-7, 1.0),
+            (1e-9, 10.0, 1e5),
+            (1e-3, 1e-7, 1e5),
+            (1e-3, 1e-14, 1e5),
+            (1e-3, 10.0, 1.0),
+            (3e-8, 0.5, 2000.0),
+        ]
     {
         for flow in [Flow::Still, Flow::indoor_room(), Flow::TurbulentChannel { friction_velocity: 0.5 }] {
             let channel = matches!(flow, Flow::TurbulentChannel { .. });
