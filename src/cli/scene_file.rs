@@ -184,7 +184,8 @@ fn wall_behaviour(name: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
 
 fn apply_walls(scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
     if let Some(all) = &walls.all {
-        *scene = scene.clone().with_walls(wall_behaviour("all", all)?);
+        let behaviour = wall_behaviour("all", all)?;
+        scene.walls.iter_mut().for_each(|w| *w = behaviour);
     }
     let geometry = scene.geometry;
     for wall in geometry.walls() {
