@@ -258,10 +258,14 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     let floor = ten["floor"]["events"].as_u64().unwrap();
     assert!(tally["captures"].as_u64().unwrap() + tally["resting"].as_u64().unwrap() >= floor, "{tally}");
     assert!(tally["contacts"].as_u64().unwrap() >= tally["captures"].as_u64().unwrap());
+    // Whole-run deposits per orientation, with their mass: 10 um spheres of 1000 kg/m^3.
+    let on_floor = ten["deposited"]["floor"].as_u64().unwrap();
+    let mass = 1000.0 * std::f64::consts::PI * 1e-15 / 6.0;
+    assert!((ten["deposited"]["floor_kg"].as_f64().unwrap() / (on_floor as f64 * mass) - 1.0).abs() < 1e-9);
     let map = std::fs::read_to_string(plots.join("room-floor-map-10um.csv")).unwrap();
     assert_eq!(map.lines().count(), 20);
     let mapped: u64 = map.lines().flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum();
-    assert!(mapped >= floor, "the map holds every floor deposit of the run: {mapped} < {floor}");
+    assert_eq!(mapped, on_floor, "the map holds every floor deposit of the run");
     for figure in ["room-deposition.svg", "room-beta.svg"] {
         assert!(std::fs::read_to_string(plots.join(figure)).unwrap().contains("<svg"), "{figure}");
     }

@@ -88,8 +88,20 @@ struct Row {
     lai_nazaroff: Model,
     particle_steps: u64,
     wall_tally: Tally,
+    deposited: Deposited,
     #[serde(skip)]
     floor_map: Vec<u32>,
+}
+
+/// Deposited count and mass (kg) per orientation over the whole run.
+#[derive(Serialize)]
+struct Deposited {
+    floor: usize,
+    floor_kg: f64,
+    ceiling: usize,
+    ceiling_kg: f64,
+    walls: usize,
+    walls_kg: f64,
 }
 
 #[derive(Serialize)]
@@ -117,6 +129,14 @@ fn row(p: &RoomPoint) -> Row {
         },
         particle_steps: p.particle_steps,
         wall_tally: p.tally.into(),
+        deposited: Deposited {
+            floor: p.deposited[0].0,
+            floor_kg: p.deposited[0].1,
+            ceiling: p.deposited[1].0,
+            ceiling_kg: p.deposited[1].1,
+            walls: p.deposited[2].0,
+            walls_kg: p.deposited[2].1,
+        },
         floor_map: p.floor_map.clone(),
     }
 }

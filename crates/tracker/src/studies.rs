@@ -67,6 +67,9 @@ pub struct RoomPoint {
     pub tally: WallTally,
     /// Deposits on the floor on a [`MAP_BINS`] grid over `x` (rows) and `y` (columns).
     pub floor_map: Vec<u32>,
+    /// Deposited count and mass (kg) over the whole run onto the floor, the ceiling and the
+    /// vertical walls.
+    pub deposited: [(usize, f64); 3],
 }
 
 /// The floor deposition map's grid.
@@ -93,6 +96,7 @@ impl RoomStudy {
             let (from, to) = (0.5 * result.duration, result.duration);
             let v = |o| result.deposition_velocity(&result.walls_facing(o), from, to);
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
+            let balance = result.balance();
             points.push(RoomPoint {
                 diameter: d,
                 floor: v(Orientation::Floor),
@@ -104,6 +108,12 @@ impl RoomStudy {
                 particle_steps: result.particle_steps(),
                 tally: total(&result.tallies),
                 floor_map: result.deposition_map(0, size, MAP_BINS),
+                deposited: [Orientation::Floor, Orientation::Ceiling, Orientation::Wall].map(|o| {
+                    result
+                        .walls_facing(o)
+                        .iter()
+                        .fold((0, 0.0), |(n, m), &w| (n + balance.deposited[w], m + balance.deposited_mass[w]))
+                }),
             });
             progress(i + 1);
         }
