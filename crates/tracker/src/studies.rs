@@ -49,11 +49,11 @@ impl Default for RoomStudy {
 pub struct RoomPoint {
     /// Diameter, m.
     pub diameter: f64,
-    /// Deposition velocity onto the floor, ceiling and vertical walls, m/s.
+    /// Deposition velocity onto the floor, m/s.
     pub floor: Estimate,
     /// Onto the ceiling, m/s.
     pub ceiling: Estimate,
-    /// Onto the vertical walls, m/s.
+    /// Onto the vertical walls (all four together), m/s.
     pub walls: Estimate,
     /// Loss-rate coefficient, 1/s.
     pub beta: Estimate,
