@@ -57,6 +57,7 @@ struct RunFile {
     brownian: Option<bool>,
     gravity: Option<f64>,
     lift: Option<bool>,
+    transient: Option<f64>,
 }
 
 #[derive(Deserialize, Default)]
@@ -253,6 +254,8 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
         return Err(format!("{}: a room takes `run.dt` and `run.duration` in seconds", path.display()));
     }
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
+    set(&mut study.transient, file.run.transient);
+    check_transient(path, study.transient)?;
     set(&mut study.diameters, file.particles.diameters);
     set(&mut study.count, file.particles.count);
     set(&mut study.density, file.particles.density);
@@ -290,8 +293,18 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     set(&mut scene.lift, file.run.lift);
     scene.gravity = gravity(file.run.gravity.unwrap_or(0.0));
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
+    set(&mut study.transient, file.run.transient);
+    check_transient(path, study.transient)?;
     set(&mut study.tau_plus, file.particles.tau_plus);
     set(&mut study.count, file.particles.count);
     set(&mut study.density, file.particles.density);
     Ok(study)
+}
+
+fn check_transient(path: &Path, transient: f64) -> Result<(), Error> {
+    if (0.0..1.0).contains(&transient) {
+        Ok(())
+    } else {
+        Err(format!("{}: `run.transient` = {transient} must be in [0, 1)", path.display()))
+    }
 }

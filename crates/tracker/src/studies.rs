@@ -2,9 +2,12 @@
 //! against Lai & Nazaroff (2000), and in a turbulent channel against Wood (1981) and
 //! Papavergos & Hedley (1984). The `depo room` and `depo channel` commands print them.
 //!
-//! Both measure the deposition velocity over the second half of the run (the first half lets
-//! the near-wall concentration settle from the uniform injection), as deposits per area and
-//! time over the mean airborne concentration (see [`crate::run`](mod@crate::run)).
+//! Both measure the deposition velocity after a `transient` share of the run, which lets the
+//! near-wall concentration layers form from the uniform injection, as deposits per area and
+//! time over the mean airborne concentration (see [`crate::run`](mod@crate::run)). In a room
+//! those layers form within seconds (a Brownian layer of thickness `delta` in `delta^2 / D`),
+//! so the first tenth of the run is left out; in a channel the turbophoretic build-up of
+//! inertial particles takes hundreds of wall time units, so the first half is.
 
 use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
@@ -25,12 +28,14 @@ pub struct RoomStudy {
     pub count: usize,
     /// Particle density, kg/m^3.
     pub density: f64,
+    /// Share of the run left out of the averages, in `[0, 1)`.
+    pub transient: f64,
 }
 
 impl Default for RoomStudy {
     /// A 4 m x 3 m x 2.5 m room, `u* = 1 cm/s` with a well-mixed core ([`Flow::indoor_room`]),
     /// Brownian motion, perfectly absorbing surfaces (as Lai & Nazaroff assume), 0.01-10 um
-    /// unit-density particles, 1800 s of 0.05 s steps.
+    /// unit-density particles, 1800 s of 0.05 s steps, averages from 180 s on.
     fn default() -> Self {
         let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.05, 1800.0);
         scene.flow = Flow::indoor_room();
@@ -40,6 +45,7 @@ impl Default for RoomStudy {
             diameters: vec![0.01e-6, 0.03e-6, 0.1e-6, 0.3e-6, 1e-6, 3e-6, 10e-6],
             count: 2000,
             density: 1000.0,
+            transient: 0.1,
         }
     }
 }
@@ -93,7 +99,7 @@ impl RoomStudy {
         for (i, &d) in self.diameters.iter().enumerate() {
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let result = run(&self.scene, &injection)?;
-            let (from, to) = (0.5 * result.duration, result.duration);
+            let (from, to) = (self.transient * result.duration, result.duration);
             let v = |o| result.deposition_velocity(&result.walls_facing(o), from, to);
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             let balance = result.balance();
@@ -132,12 +138,15 @@ pub struct ChannelStudy {
     pub count: usize,
     /// Particle density, kg/m^3.
     pub density: f64,
+    /// Share of the run left out of the averages, in `[0, 1)`.
+    pub transient: f64,
 }
 
 impl Default for ChannelStudy {
     /// A channel of `Re_tau = 150` (`u* = 0.3 m/s`, height 15 mm in standard air), no gravity
     /// (the correlations are for vertical flows), Brownian motion, absorbing walls, particles
-    /// of 1000 kg/m^3, steps of 0.2 and runs of 3000 wall time units.
+    /// of 1000 kg/m^3, steps of 0.2 and runs of 3000 wall time units, averages over the second
+    /// half.
     fn default() -> Self {
         let air = Air::standard();
         let u_star = 0.3;
@@ -151,7 +160,13 @@ impl Default for ChannelStudy {
         scene.gravity = [0.0; 3];
         scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
         scene.brownian = true;
-        Self { scene, tau_plus: vec![0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0], count: 4000, density: 1000.0 }
+        Self {
+            scene,
+            tau_plus: vec![0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0],
+            count: 4000,
+            density: 1000.0,
+            transient: 0.5,
+        }
     }
 }
 
@@ -186,7 +201,7 @@ impl ChannelStudy {
             let d = diameter_for_tau_plus(tp, self.density, air, u_star);
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let result = run(&self.scene, &injection)?;
-            let (from, to) = (0.5 * result.duration, result.duration);
+            let (from, to) = (self.transient * result.duration, result.duration);
             let all: Vec<usize> = (0..result.walls.len()).collect();
             let v = result.deposition_velocity(&all, from, to);
             let sc = schmidt(d, air);
