@@ -297,6 +297,9 @@ fn scene_file_errors_name_the_file_line_and_key() {
     let preset = dir.join("preset.toml");
     std::fs::write(&preset, "[walls]\nlower = { preset = \"nope\" }\n").unwrap();
     user_error(&["channel", preset.to_str().unwrap()], "walls.lower.preset");
+    let transient = dir.join("transient.toml");
+    std::fs::write(&transient, "[run]\ntransient = 1.5\n").unwrap();
+    user_error(&["room", transient.to_str().unwrap(), "--no-plot"], "`run.transient` = 1.5");
     user_error(&["room", dir.join("missing.toml").to_str().unwrap()], "cannot read");
     user_error(&["channel", "--tau-plus", "-1"], "--tau-plus");
 }
