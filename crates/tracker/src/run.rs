@@ -26,25 +26,26 @@ const CHUNK: usize = 256;
 pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
     scene.validate(injection)?;
     let prepared = Prepared::new(scene, injection);
-    let walls = prepared.walls.clone();
+    let wall_count = prepared.walls.len();
     let chunks: Vec<(Vec<Record>, Vec<WallTally>)> = (0..injection.count.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
-            let mut tally = vec![WallTally::default(); walls.len()];
+            let mut tally = vec![WallTally::default(); wall_count];
             let ids = c * CHUNK..((c + 1) * CHUNK).min(injection.count);
             let records = track(&prepared, ids, &mut tally);
             (records, tally)
         })
         .collect();
     let mut records = Vec::with_capacity(injection.count);
-    let mut tallies = vec![WallTally::default(); walls.len()];
+    let mut tallies = vec![WallTally::default(); wall_count];
     for (r, t) in chunks {
         records.extend(r);
         for (sum, x) in tallies.iter_mut().zip(t) {
             *sum += x;
         }
     }
-    Ok(Run { records, tallies, walls, volume: scene.geometry.volume(), duration: prepared.steps as f64 * scene.dt })
+    let duration = prepared.steps as f64 * scene.dt;
+    Ok(Run { records, tallies, walls: prepared.walls, volume: scene.geometry.volume(), duration })
 }
 
 /// A value with its standard error.

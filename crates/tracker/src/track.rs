@@ -378,11 +378,12 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
             let mut bx = DVec3::ZERO;
             let mut bv = DVec3::ZERO;
             for a in 0..3 {
-                let (za, zb) = (normal(&mut rng), normal(&mut rng));
+                let za = normal(&mut rng);
                 if EULER {
                     // Euler-Maruyama: velocity kick of variance 2 kT/m dt/tau; position from v.
                     bv[a] = (2.0 * body.thermal_variance * dt / body.tau).sqrt() * za;
                 } else {
+                    let zb = normal(&mut rng);
                     bx[a] = body.brownian[0] * za;
                     bv[a] = body.brownian[1] * za + body.brownian[2] * zb;
                 }
