@@ -350,3 +350,51 @@ fn the_example_data_fit_back_to_their_preset() {
     assert!((fit["k"].as_f64().unwrap() / 12.5 - 1.0).abs() < 0.05, "{fit}");
     assert!(fit["fitting_index"].as_f64().unwrap() > 0.98);
 }
+
+#[test]
+fn capture_velocity_from_material_properties() {
+    use depo::wall_model::theory;
+    let common = [
+        "capture-velocity",
+        "--density",
+        "2200",
+        "--particle-modulus",
+        "73e9",
+        "--particle-poisson",
+        "0.17",
+        "--wall-modulus",
+        "inf",
+        "--wall-poisson",
+        "0.3",
+        "--work-of-adhesion",
+        "0.1",
+        "--diameters",
+        "1e-6,8e-6",
+    ];
+    let mut args = common.to_vec();
+    args.extend(["--yield-pressure", "1e10", "--hamaker", "6.5e-20", "--restitution", "0.9", "--format", "json"]);
+    let report = ok_json(&args);
+    let modulus = 73e9 / (1.0 - 0.17 * 0.17);
+    assert!((report["effective_modulus"].as_f64().unwrap() / modulus - 1.0).abs() < 1e-12);
+    let rows = report["rows"].as_array().unwrap();
+    let vc: Vec<f64> = rows.iter().map(|r| r["jkr_capture_velocity"].as_f64().unwrap()).collect();
+    assert!((vc[0] / theory::jkr_capture_velocity(0.5e-6, 2200.0, modulus, 0.1) - 1.0).abs() < 1e-12);
+    // An eight times larger particle is captured below 8^(-5/6) = 1/5.66 of the speed.
+    assert!((vc[1] / vc[0] - 8f64.powf(-5.0 / 6.0)).abs() < 1e-12);
+    // Dahneke: vc ~ d^-1 for a fixed restitution.
+    let dahneke: Vec<f64> = rows.iter().map(|r| r["dahneke_capture_velocity"].as_f64().unwrap()).collect();
+    assert!((dahneke[1] / dahneke[0] - 0.125).abs() < 1e-12);
+    assert_eq!(rows[0]["elastic"], true);
+    let table = depo(&common);
+    assert!(table.status.success());
+    assert!(String::from_utf8_lossy(&table.stdout).contains("Thornton & Ning"));
+    let mut bad = common.to_vec();
+    bad[12] = "-0.1";
+    user_error(&bad, "--work-of-adhesion");
+    let mut bad = common.to_vec();
+    bad[6] = "0.7";
+    user_error(&bad, "--particle-poisson");
+    let mut bad = common.to_vec();
+    bad.extend(["--hamaker", "1e-19", "--restitution", "1.5"]);
+    user_error(&bad, "--restitution");
+}

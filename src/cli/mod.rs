@@ -10,6 +10,7 @@ macro_rules! out {
 }
 
 mod bench;
+mod capture;
 mod channel;
 mod curve;
 mod figures;
@@ -43,6 +44,8 @@ enum Command {
     Impact(impact::ImpactArgs),
     /// Fit the law's constants to measured (vn, e) data, with uncertainties.
     Fit(fit::FitArgs),
+    /// The capture velocity from material properties (JKR, Dahneke), per diameter.
+    CaptureVelocity(capture::CaptureArgs),
     /// Redraw the paper's Figs. 6 and 8 and the presets' e curves as SVG files.
     Figures(figures::FiguresArgs),
     /// Deposition in a room per particle size and surface, beside Lai & Nazaroff (2000).
@@ -142,6 +145,7 @@ pub fn run(args: Args) -> Result<(), Error> {
         Command::Curve(a) => curve::run(&a),
         Command::Impact(a) => impact::run(&a),
         Command::Fit(a) => fit::run(&a),
+        Command::CaptureVelocity(a) => capture::run(&a),
         Command::Figures(a) => figures::run(&a),
         Command::Room(a) => room::run(&a),
         Command::Channel(a) => channel::run(&a),

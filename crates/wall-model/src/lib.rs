@@ -18,7 +18,9 @@
 //!   uncertainties and a warning when `vc` is an extrapolation; [`tilt`]: what a misaligned or
 //!   rough surface does to measured restitution (Fig. 6), and rough per-particle normals;
 //!   [`contact`]: a time-integrated sphere-wall impact (Hertz, damping, adhesion) that makes
-//!   `e(vn)` curves and capture velocities where there is no data.
+//!   `e(vn)` curves and capture velocities where there is no data; [`theory`]: the capture
+//!   velocity in closed form from material properties (JKR after Johnson & Pollock and
+//!   Thornton & Ning; a van der Waals well after Dahneke), with where each holds.
 //! - [`batch`]: structure-of-arrays batches borrowed from the host, per-particle
 //!   [`Outcome`]s and the [`Tally`]; [`kernel`] is the loop over a batch, one monomorphised,
 //!   vectorised variant per scene, run across cores with rayon.
@@ -56,6 +58,7 @@ pub mod power;
 pub mod presets;
 pub mod real;
 pub mod size;
+pub mod theory;
 pub mod tilt;
 mod wall_law;
 
