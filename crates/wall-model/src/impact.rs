@@ -99,18 +99,24 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     let e = coefficients.overall;
     let v_t = axpy(-vn, n, v);
 
-    let (slip_vector, slip, j, rolling) = if FRICTION {
+    // Pt/m = -ratio s with ratio = min(2/7, mu |vn| / |s| (1 + e)): rolling, or sliding at the
+    // friction limit. `mu |vn| / |s|` needs only the slip, so its division runs beside the one
+    // in `e` rather than after it (the kernel's speed is set by this dependency chain). Zero
+    // slip makes it infinite: rolling with no impulse.
+    let (slip_vector, slip, ratio, j, rolling) = if FRICTION {
         let s = if SPIN { axpy(-radius, cross(w, n), v_t) } else { v_t };
         let slip = dot(s, s).sqrt();
-        let rolling_impulse = T::from_f64(2.0 / 7.0) * slip;
-        let friction_limit = c.mu * (T::ONE + e) * speed.abs();
-        let j = rolling_impulse.min(friction_limit);
-        (s, slip, j, rolling_impulse <= friction_limit)
+        let two_sevenths = T::from_f64(2.0 / 7.0);
+        let sliding_scale = c.mu * speed.abs();
+        let limit = select(slip > T::ZERO, sliding_scale / slip, T::INFINITY) * (T::ONE + e);
+        let rolling = two_sevenths <= limit;
+        // |Pt|/m = min(2/7 |s|, mu (1 + e) |vn|), chosen rather than computed as ratio |s|
+        // (NaN for an infinite slip).
+        let j = select(rolling, two_sevenths * slip, sliding_scale * (T::ONE + e));
+        (s, slip, two_sevenths.min(limit), j, rolling)
     } else {
-        ([T::ZERO; 3], T::ZERO, T::ZERO, false)
+        ([T::ZERO; 3], T::ZERO, T::ZERO, T::ZERO, false)
     };
-    // Pt/m = -(j/|s|) s, with j/|s| in [0, 2/7]; zero slip gives no impulse.
-    let ratio = select(slip > T::ZERO, j / slip, T::ZERO);
     let impulse_t = [-ratio * slip_vector[0], -ratio * slip_vector[1], -ratio * slip_vector[2]];
 
     let tangential = if FRICTION { axpy(T::ONE, impulse_t, v_t) } else { v_t };
