@@ -262,10 +262,17 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     let on_floor = ten["deposited"]["floor"].as_u64().unwrap();
     let mass = 1000.0 * std::f64::consts::PI * 1e-15 / 6.0;
     assert!((ten["deposited"]["floor_kg"].as_f64().unwrap() / (on_floor as f64 * mass) - 1.0).abs() < 1e-9);
-    let map = std::fs::read_to_string(plots.join("room-floor-map-10um.csv")).unwrap();
-    assert_eq!(map.lines().count(), 20);
-    let mapped: u64 = map.lines().flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum();
-    assert_eq!(mapped, on_floor, "the map holds every floor deposit of the run");
+    let mapped = |wall: &str| -> u64 {
+        let map = std::fs::read_to_string(plots.join(format!("room-map-{wall}-10um.csv"))).unwrap();
+        assert_eq!(map.lines().count(), 20);
+        assert!(map.lines().all(|l| l.split(',').count() == 20));
+        map.lines().flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum()
+    };
+    assert_eq!(mapped("floor"), on_floor, "the floor map holds every floor deposit of the run");
+    let on_walls = ten["deposited"]["walls"].as_u64().unwrap();
+    let side: u64 = ["x0", "x1", "y0", "y1"].iter().map(|w| mapped(w)).sum();
+    assert_eq!(side, on_walls, "the four side maps hold every wall deposit");
+    assert_eq!(mapped("ceiling"), ten["deposited"]["ceiling"].as_u64().unwrap());
     for figure in ["room-deposition.svg", "room-beta.svg"] {
         assert!(std::fs::read_to_string(plots.join(figure)).unwrap().contains("<svg"), "{figure}");
     }

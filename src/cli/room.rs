@@ -90,7 +90,7 @@ struct Row {
     wall_tally: Tally,
     deposited: Deposited,
     #[serde(skip)]
-    floor_map: Vec<u32>,
+    maps: Vec<Vec<u32>>,
 }
 
 /// Deposited count and mass (kg) per orientation over the whole run.
@@ -137,7 +137,7 @@ fn row(p: &RoomPoint) -> Row {
             walls: p.deposited[2].0,
             walls_kg: p.deposited[2].1,
         },
-        floor_map: p.floor_map.clone(),
+        maps: p.maps.clone(),
     }
 }
 
@@ -268,20 +268,25 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 series("Lai & Nazaroff (2000)", &|r| r.lai_nazaroff.beta_per_hour, false),
             ],
         )?;
-        // Floor deposition maps, one CSV per size: rows along x, columns along y.
+        // Deposition maps, one CSV per wall and size: rows and columns along the wall's two
+        // in-plane axes in the order x, y, z.
+        let walls = study.scene.geometry.walls();
         for r in &rows {
             let label = (r.diameter_um * 1e4).round() / 1e4;
-            let path = args.plot.join(format!("room-floor-map-{label}um.csv"));
-            let mut text = String::new();
-            for row in r.floor_map.chunks(MAP_BINS[1]) {
-                let cells: Vec<String> = row.iter().map(u32::to_string).collect();
-                text.push_str(&cells.join(","));
-                text.push('\n');
+            for (wall, map) in walls.iter().zip(&r.maps) {
+                let name = wall.name(&study.scene.geometry);
+                let path = args.plot.join(format!("room-map-{name}-{label}um.csv"));
+                let mut text = String::new();
+                for row in map.chunks(MAP_BINS[1]) {
+                    let cells: Vec<String> = row.iter().map(u32::to_string).collect();
+                    text.push_str(&cells.join(","));
+                    text.push('\n');
+                }
+                std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
             }
-            std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         }
         eprintln!(
-            "figures: {} and {}; floor deposition maps ({}x{} cells over x and y): {}/room-floor-map-*.csv",
+            "figures: {} and {}; deposition maps ({}x{} cells per wall): {}/room-map-WALL-SIZEum.csv",
             deposition.display(),
             beta.display(),
             MAP_BINS[0],

@@ -71,14 +71,16 @@ pub struct RoomPoint {
     pub particle_steps: u64,
     /// The wall-law tallies summed over all surfaces.
     pub tally: WallTally,
-    /// Deposits on the floor on a [`MAP_BINS`] grid over `x` (rows) and `y` (columns).
-    pub floor_map: Vec<u32>,
+    /// Deposition maps, one per wall in id order (floor, ceiling, x0, x1, y0, y1), each on a
+    /// [`MAP_BINS`] grid over the wall's two in-plane axes in the order x, y, z (rows, columns):
+    /// the floor's over x and y, the `x0`/`x1` walls' over y and z.
+    pub maps: Vec<Vec<u32>>,
     /// Deposited count and mass (kg) over the whole run onto the floor, the ceiling and the
     /// vertical walls.
     pub deposited: [(usize, f64); 3],
 }
 
-/// The floor deposition map's grid.
+/// The deposition maps' grid.
 pub const MAP_BINS: [usize; 2] = [20, 20];
 
 fn total(tallies: &[WallTally]) -> WallTally {
@@ -113,7 +115,7 @@ impl RoomStudy {
                 model_beta: model.loss_rate(size),
                 particle_steps: result.particle_steps(),
                 tally: total(&result.tallies),
-                floor_map: result.deposition_map(0, size, MAP_BINS),
+                maps: (0..result.walls.len()).map(|w| result.deposition_map(w, size, MAP_BINS)).collect(),
                 deposited: [Orientation::Floor, Orientation::Ceiling, Orientation::Wall].map(|o| {
                     result
                         .walls_facing(o)
