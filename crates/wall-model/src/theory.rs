@@ -36,7 +36,10 @@
 //! the `vc ~ R^(-5/6)` law that Johnson & Pollock (1994, J. Adhesion Sci. Technol. 8, 1323)
 //! derived for elastic adhesive impacts and that the paper's Fig. 8 compares with. Both
 //! constants are derived here from the JKR curve and checked against a numerical integration of
-//! it in the tests ([`jkr_energy_loss`], [`jkr_capture_velocity`]).
+//! it in the tests ([`jkr_energy_loss`], [`jkr_capture_velocity`]). Johnson & Pollock also let
+//! the surface energy on detachment exceed that on attachment (adhesion hysteresis, as the
+//! paper recalls under Fig. 8), which adds loss on the loading-unloading cycle; with one `w`
+//! (give the detachment value) this `vc` is the lower estimate in that respect.
 //!
 //! Valid when: the contact is JKR-like (Tabor's parameter above about 5, [`tabor_parameter`];
 //! small, stiff particles with weak adhesion are DMT-like and stick less); the impact stays
