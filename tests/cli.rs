@@ -392,6 +392,13 @@ fn capture_velocity_from_material_properties() {
     let dahneke: Vec<f64> = rows.iter().map(|r| r["dahneke_capture_velocity"].as_f64().unwrap()).collect();
     assert!((dahneke[1] / dahneke[0] - 0.125).abs() < 1e-12);
     assert_eq!(rows[0]["elastic"], true);
+    let mut csv_args = common.to_vec();
+    csv_args.extend(["--format", "csv"]);
+    let csv = depo(&csv_args);
+    let csv = String::from_utf8_lossy(&csv.stdout);
+    let first: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
+    assert_eq!(csv.lines().count(), 3);
+    assert!((first[1].parse::<f64>().unwrap() / vc[0] - 1.0).abs() < 1e-12, "{csv}");
     let table = depo(&common);
     assert!(table.status.success());
     assert!(String::from_utf8_lossy(&table.stdout).contains("Thornton & Ning"));

@@ -145,14 +145,14 @@ fn print(report: &Report, format: Format) -> Result<(), Error> {
             out!("diameter,jkr_capture_velocity,jkr_energy_loss,tabor_parameter,contact_regime,elastic,dahneke_capture_velocity");
             for r in &report.rows {
                 out!(
-                    "{},{},{},{},{},{},{}",
+                    "{:e},{:e},{:e},{:e},{},{},{}",
                     r.diameter,
                     r.jkr_capture_velocity,
                     r.jkr_energy_loss,
                     r.tabor_parameter,
                     r.contact_regime,
                     elastic(r.elastic),
-                    r.dahneke_capture_velocity.map_or(String::new(), |v| v.to_string())
+                    r.dahneke_capture_velocity.map_or(String::new(), |v| format!("{v:e}"))
                 );
             }
         }
