@@ -3,7 +3,7 @@
 
 use clap::Args;
 use depo::wall_model::theory::{
-    dahneke_capture_velocity, effective_modulus, hamaker_well_depth, jkr_capture_velocity, jkr_energy_loss, positive,
+    dahneke_capture_velocity, effective_modulus, hamaker_well_depth, jkr_capture_velocity, jkr_energy_loss,
     sphere_mass, tabor_parameter, yield_velocity, CONTACT_SEPARATION,
 };
 use serde::Serialize;
@@ -75,8 +75,13 @@ struct Report {
     rows: Vec<Row>,
 }
 
+/// The value of `--flag` if it is finite and positive.
 fn arg(flag: &str, value: f64) -> Result<f64, Error> {
-    positive("", value).map_err(|_| format!("--{flag} {value}: must be finite and positive"))
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(format!("--{flag} {value}: must be finite and positive"))
+    }
 }
 
 fn regime(tabor: f64) -> &'static str {

@@ -181,7 +181,7 @@ impl MaterialPair {
 }
 
 /// Checks that `value` is finite and positive, naming `field` if not.
-pub fn positive(field: &'static str, value: f64) -> Result<f64, ParamError> {
+fn positive(field: &'static str, value: f64) -> Result<f64, ParamError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
