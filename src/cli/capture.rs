@@ -4,7 +4,7 @@
 use clap::Args;
 use depo::wall_model::theory::{
     dahneke_capture_velocity, effective_modulus, hamaker_well_depth, jkr_capture_velocity, jkr_energy_loss,
-    sphere_mass, tabor_parameter, yield_velocity, CONTACT_SEPARATION,
+    sphere_mass, tabor_parameter, yield_velocity, CONTACT_SEPARATION, DMT_TABOR_MAX, JKR_TABOR_MIN,
 };
 use serde::Serialize;
 
@@ -85,9 +85,9 @@ fn arg(flag: &str, value: f64) -> Result<f64, Error> {
 }
 
 fn regime(tabor: f64) -> &'static str {
-    if tabor > 5.0 {
+    if tabor > JKR_TABOR_MIN {
         "JKR"
-    } else if tabor < 0.1 {
+    } else if tabor < DMT_TABOR_MAX {
         "DMT"
     } else {
         "transition"

@@ -57,7 +57,7 @@ pub struct SimulatedImpact {
 
 impl ContactModel {
     fn mass(&self) -> f64 {
-        4.0 / 3.0 * core::f64::consts::PI * self.radius.powi(3) * self.density
+        crate::theory::sphere_mass(self.radius, self.density)
     }
 
     fn stiffness(&self) -> f64 {

@@ -65,11 +65,10 @@
 //! Valid when: the particle does not deform (stiff, small `w R / (E* z0^2)`), `e0` does not
 //! depend on speed, and `z0` and `A` are known; `vc` is very sensitive to `z0` (as `z0^-1/2`).
 //!
-//! All inputs are SI and must be finite and positive (`e0` in `(0, 1]`); the functions do not
-//! check them, since they are plain formulas. [`MaterialPair::new`] validates a full set for
-//! callers that read them from users.
+//! All inputs are SI and must be finite and positive (`e0` in `(0, 1]`); the functions are
+//! plain formulas and do not check them: callers that read them from users validate there
+//! (as `depo capture-velocity` does, naming the flag).
 
-use crate::params::ParamError;
 use core::f64::consts::PI;
 
 /// `C_W` of [`jkr_energy_loss`]: `(2 pi)^(5/3) (3/10 + 2^(-8/3) / 5)`.
@@ -99,8 +98,8 @@ pub fn sphere_mass(radius: f64, density: f64) -> f64 {
 /// of adhesion `w` (J/m^2). See the module doc for the derivation.
 #[must_use]
 pub fn jkr_energy_loss(radius: f64, effective_modulus: f64, work_of_adhesion: f64) -> f64 {
-    // (w^5 R^4 / E*^2)^(1/3) written as w (w^2 R^4 / E*^2)^(1/3) keeps every factor in range
-    // for w up to 1e60 and R down to 1e-30.
+    // (w^5 R^4 / E*^2)^(1/3) written as w (w^2 (R^2 / E*)^2)^(1/3), so that w^5 and R^4 are
+    // never formed on their own (tested finite from R = 1e-12 m, E* = 1e3 Pa up).
     let w = work_of_adhesion;
     JKR_LOSS_COEFFICIENT * w * (w * w * (radius * radius / effective_modulus).powi(2)).cbrt()
 }
@@ -128,9 +127,13 @@ pub fn yield_velocity(density: f64, effective_modulus: f64, limiting_pressure: f
     PI * PI / 40f64.sqrt() * (ratio.powi(4) * limiting_pressure / density).sqrt()
 }
 
+/// Tabor's parameter above which a contact is JKR-like and [`jkr_capture_velocity`] applies.
+pub const JKR_TABOR_MIN: f64 = 5.0;
+/// Tabor's parameter below which a contact is DMT-like (stiff, small particles).
+pub const DMT_TABOR_MAX: f64 = 0.1;
+
 /// Tabor's parameter `mu = (R w^2 / (E*^2 z0^3))^(1/3)`: the neck's height over the range of
-/// the surface forces. Above about 5 the contact is JKR-like and [`jkr_capture_velocity`]
-/// applies; below about 0.1 it is DMT-like (stiff, small particles).
+/// the surface forces. JKR-like above [`JKR_TABOR_MIN`], DMT-like below [`DMT_TABOR_MAX`].
 #[must_use]
 pub fn tabor_parameter(radius: f64, effective_modulus: f64, work_of_adhesion: f64, separation: f64) -> f64 {
     (radius * (work_of_adhesion / effective_modulus).powi(2)).cbrt() / separation
@@ -150,43 +153,6 @@ pub fn hamaker_well_depth(hamaker: f64, radius: f64, separation: f64) -> f64 {
 #[must_use]
 pub fn dahneke_capture_velocity(mass: f64, well_depth: f64, restitution: f64) -> f64 {
     (2.0 * well_depth / mass).sqrt() * (1.0 - restitution * restitution).sqrt() / restitution
-}
-
-/// A particle and wall material pair, validated, for the theories above.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MaterialPair {
-    /// Particle density, kg/m^3.
-    pub density: f64,
-    /// Effective modulus `E*`, Pa.
-    pub effective_modulus: f64,
-    /// Work of adhesion `w`, J/m^2.
-    pub work_of_adhesion: f64,
-}
-
-impl MaterialPair {
-    /// Checks that the density, effective modulus and work of adhesion are finite and
-    /// positive; the error names the first that is not.
-    pub fn new(density: f64, effective_modulus: f64, work_of_adhesion: f64) -> Result<Self, ParamError> {
-        positive("density", density)?;
-        positive("effective_modulus", effective_modulus)?;
-        positive("work_of_adhesion", work_of_adhesion)?;
-        Ok(Self { density, effective_modulus, work_of_adhesion })
-    }
-
-    /// [`jkr_capture_velocity`] for a particle of diameter `diameter` (m).
-    #[must_use]
-    pub fn capture_velocity(&self, diameter: f64) -> f64 {
-        jkr_capture_velocity(0.5 * diameter, self.density, self.effective_modulus, self.work_of_adhesion)
-    }
-}
-
-/// Checks that `value` is finite and positive, naming `field` if not.
-fn positive(field: &'static str, value: f64) -> Result<f64, ParamError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(ParamError { field, value, requirement: "must be finite and positive" })
-    }
 }
 
 #[cfg(test)]
@@ -329,19 +295,5 @@ mod tests {
             let simulated = model.capture_velocity(0.2 * theory, 5.0 * theory).expect("bracket holds");
             assert!(close(simulated / theory, expected, 5e-3), "{radius}: {}", simulated / theory);
         }
-    }
-
-    #[test]
-    fn material_pair_rejects_bad_values_by_name() {
-        assert!(MaterialPair::new(1000.0, 1e10, 0.1).is_ok());
-        for (pair, field) in [
-            (MaterialPair::new(0.0, 1e10, 0.1), "density"),
-            (MaterialPair::new(1000.0, f64::NAN, 0.1), "effective_modulus"),
-            (MaterialPair::new(1000.0, 1e10, -0.1), "work_of_adhesion"),
-        ] {
-            assert_eq!(pair.unwrap_err().field, field);
-        }
-        let pair = MaterialPair::new(1000.0, 1e10, 0.1).unwrap();
-        assert!(close(pair.capture_velocity(2e-6), jkr_capture_velocity(1e-6, 1000.0, 1e10, 0.1), 1e-15));
     }
 }
