@@ -97,7 +97,10 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     let speed = -vn;
     let coefficients = law::coefficients(c, p, q, speed);
     let e = coefficients.overall;
-    let v_t = axpy(-vn, n, v);
+    // The normal part `vn n`, shared by `v_t` and the rebound's `Vn n = -e vn n`, so that after
+    // `e` only one multiply and one add remain on the way to the velocity.
+    let v_n = [vn * n[0], vn * n[1], vn * n[2]];
+    let v_t = [v[0] - v_n[0], v[1] - v_n[1], v[2] - v_n[2]];
 
     // Pt/m = -ratio s with ratio = min(2/7, mu |vn| / |s| (1 + e)): rolling, or sliding at the
     // friction limit. `mu |vn| / |s|` needs only the slip, so its division runs beside the one
@@ -120,7 +123,7 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     let impulse_t = [-ratio * slip_vector[0], -ratio * slip_vector[1], -ratio * slip_vector[2]];
 
     let tangential = if FRICTION { axpy(T::ONE, impulse_t, v_t) } else { v_t };
-    let mut velocity = axpy(-e * vn, n, tangential);
+    let mut velocity = axpy(-e, v_n, tangential);
     let mut spin = if SPIN && FRICTION { axpy(T::from_f64(-2.5) / radius, cross(n, impulse_t), w) } else { w };
 
     let deposit = coefficients.captured & (mode == CaptureMode::Deposit);

@@ -127,23 +127,26 @@ pub fn restitution_formula<T: Real, P: Power<T>, Q: Power<T>>(c: &LawConstants<T
     (b - T::ONE) / (a * b)
 }
 
-/// The capture rule: `|vn| <= vc` (with `vc > 0`), or a formula restitution `e <= 0`.
+/// The capture rule: `|vn| <= vc` (with `vc > 0`), or a formula restitution `e <= 0`, decided
+/// from `B` (the `adhesion_denominator`) without the division: `e = (B - 1) / (A B)` with
+/// `A >= 1` and `B >= 0` has the sign of `B - 1` (and is `-inf` for `B = 0`), so `e <= 0`
+/// exactly when `B <= 1`. The kernel's outcome flag then does not wait for the division.
 #[inline(always)]
 #[must_use]
-pub fn is_captured<T: Real>(c: &LawConstants<T>, speed: T, formula_e: T) -> bool {
-    (speed <= c.capture_speed) | (formula_e <= T::ZERO)
+pub fn is_captured<T: Real>(c: &LawConstants<T>, speed: T, adhesion_denominator: T) -> bool {
+    (speed <= c.capture_speed) | (adhesion_denominator <= T::ONE)
 }
 
 /// All coefficients of an impact of normal speed `|vn| > 0`, with the capture rule applied.
 #[inline(always)]
 #[must_use]
 pub fn coefficients<T: Real, P: Power<T>, Q: Power<T>>(c: &LawConstants<T>, p: P, q: Q, speed: T) -> Coefficients<T> {
-    let formula_e = restitution_formula(c, p, q, speed);
-    let captured = is_captured(c, speed, formula_e);
+    // The denominators are evaluated once: these calls inline and share them.
+    let captured = is_captured(c, speed, adhesion_denominator(c, q, speed));
     Coefficients {
         restitution: material_restitution(c, p, speed),
         adhesion: select(captured, T::ONE, adhesion(c, q, speed)),
-        overall: select(captured, T::ZERO, formula_e),
+        overall: select(captured, T::ZERO, restitution_formula(c, p, q, speed)),
         captured,
     }
 }
@@ -249,6 +252,56 @@ mod tests {
         // rho = 2/(1 + |vn| + 0.1) >= 1 for |vn| <= 0.9: captured by e <= 0.
         assert!(coefficients(&strong, One, One, 0.5).captured);
         assert!(!coefficients(&strong, One, One, 2.0).captured);
+    }
+
+    /// The capture rule, and the rule written with the divided formula's sign.
+    fn rule_and_sign<T: Real>(lp: &LawParams, speed: T) -> (bool, bool) {
+        let c = LawConstants::<T>::new(lp);
+        let (p, q) = (Exact(T::from_f64(lp.p)), Exact(T::from_f64(lp.q)));
+        let b = adhesion_denominator(&c, q, speed);
+        let e = restitution_formula(&c, p, q, speed);
+        (is_captured(&c, speed, b), (speed <= c.capture_speed) | (e <= T::ZERO))
+    }
+
+    proptest::proptest! {
+        /// The capture rule reads `e <= 0` off `B <= 1`, before the division: it must agree
+        /// with the sign of the divided formula, also where `B` is within rounding of 1.
+        #[test]
+        fn capture_from_the_denominator_is_the_sign_of_e(
+            k1 in 1e-3f64..1e3, k2 in 1e-3f64..1e3, kappa1 in 1e-3f64..1e3, kappa2 in 1e-3f64..1e3,
+            p in 0.2f64..4.0, q in 0.2f64..4.0, vc in -1.0f64..1.0, speed in 1e-6f64..1e3,
+        ) {
+            let lp = LawParams { k1, k2, kappa1, kappa2, p, q, vc, mu: 0.0 };
+            let (rule, sign) = rule_and_sign::<f64>(&lp, speed);
+            proptest::prop_assert_eq!(rule, sign);
+            let (rule, sign) = rule_and_sign::<f32>(&lp, speed as f32);
+            proptest::prop_assert_eq!(rule, sign);
+            // The speed where B = (kappa2/kappa1)^q + (u/kappa1)^q = 1 (kappa2 < kappa1): e
+            // changes sign there, and the two rules must round alike on both sides of it.
+            let (lo, hi) = (kappa1.min(kappa2), kappa1.max(kappa2));
+            let lp = LawParams { kappa1: hi, kappa2: lo, ..lp };
+            let u = hi * (1.0 - (lo / hi).powf(q)).powf(1.0 / q);
+            let at_one = vc.max(0.0) + u;
+            for s in [at_one.next_down(), at_one, at_one.next_up()] {
+                let (rule, sign) = rule_and_sign::<f64>(&lp, s);
+                proptest::prop_assert_eq!(rule, sign, "at {}", s);
+            }
+        }
+    }
+
+    #[test]
+    fn capture_when_the_adhesion_denominator_underflows_to_zero() {
+        // (kappa2/kappa1)^q underflows to 0 and |u| = 0: B = 0, e = -1/0 = -inf, captured.
+        let c = LawConstants::<f64>::new(&LawParams {
+            kappa1: 1e6,
+            kappa2: 1e-6,
+            q: 30.0,
+            ..LawParams::symmetric(10.0, 1.0, 0.5, 1.0, 1.0)
+        });
+        assert_eq!(c.kappa_ratio, 0.0);
+        assert_eq!(adhesion_denominator(&c, Exact(30.0), 0.5), 0.0);
+        assert!(restitution_formula(&c, One, Exact(30.0), 0.5) == f64::NEG_INFINITY);
+        assert!(is_captured(&c, 0.5, 0.0));
     }
 
     #[test]
