@@ -34,6 +34,8 @@ pub struct Scenario {
     pub exponents: (f64, f64),
     pub power: PowerMode,
     pub spin: bool,
+    /// Friction on (`mu = 0.3`) or off (`mu = 0`, the kernel without the tangential impulse).
+    pub friction: bool,
     /// Whether a tally (counts and energy) is kept.
     pub tally: bool,
     /// Number of impacts per call.
@@ -60,14 +62,17 @@ impl Scenario {
             exp(self.exponents.1),
             power,
             if self.spin { " spin" } else { "" }
-        ) + if self.tally { " tally" } else { "" }
+        ) + if self.friction { "" } else { " mu=0" }
+            + if self.tally { " tally" } else { "" }
     }
 
-    /// The law used: the li1997-sio2 constants with friction 0.3 and the scenario's exponents.
+    /// The law used: the li1997-sio2 constants with the scenario's exponents and friction 0.3
+    /// (or none).
     #[must_use]
     pub fn law(&self) -> WallLaw {
         let (p, q) = self.exponents;
-        WallLaw::new(LawParams { p, q, ..LawParams::symmetric(12.5, 0.065, 0.074, 1.0, 0.5).with_friction(0.3) })
+        let mu = if self.friction { 0.3 } else { 0.0 };
+        WallLaw::new(LawParams { p, q, ..LawParams::symmetric(12.5, 0.065, 0.074, 1.0, 0.5).with_friction(mu) })
             .expect("valid benchmark law")
             .with_power_mode(self.power)
     }
@@ -271,12 +276,19 @@ pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
                 ((1.3, 0.7), PowerMode::Fast),
                 ((1.3, 0.7), PowerMode::Exact),
             ] {
-                out.push(Scenario { precision, exponents, power, spin, tally: false, n });
+                out.push(Scenario { precision, exponents, power, spin, friction: true, tally: false, n });
             }
         }
     }
     for precision in [Precision::F64, Precision::F32] {
-        out.push(Scenario { precision, exponents: (1.0, 0.5), power: PowerMode::Fast, spin: false, tally: true, n });
+        for exponents in [(1.0, 1.0), (1.0, 0.5)] {
+            let power = PowerMode::Fast;
+            out.push(Scenario { precision, exponents, power, spin: false, friction: false, tally: false, n });
+        }
+    }
+    for precision in [Precision::F64, Precision::F32] {
+        let (exponents, power) = ((1.0, 0.5), PowerMode::Fast);
+        out.push(Scenario { precision, exponents, power, spin: false, friction: true, tally: true, n });
     }
     out
 }
