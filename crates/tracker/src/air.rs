@@ -109,7 +109,7 @@ impl Aerodynamics {
     pub fn new(diameter: f64, particle_density: f64, air: &Air, gravity: f64) -> Self {
         let slip = slip_correction(diameter, air.mean_free_path());
         let tau = relaxation_time(diameter, particle_density, slip, air);
-        let mass = particle_density * std::f64::consts::PI * diameter.powi(3) / 6.0;
+        let mass = depo_wall_model::theory::sphere_mass(0.5 * diameter, particle_density);
         Self {
             diameter,
             mass,
