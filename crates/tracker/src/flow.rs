@@ -165,8 +165,11 @@ pub(crate) struct Table {
     split: f64,
     inv_fine: f64,
     inv_coarse: f64,
-    nodes: Vec<Node>,
+    nodes: Box<[Node; NODES]>,
 }
+
+/// Nodes of a table: the fine grid's `TABLE_CELLS + 1` and the coarse grid's `TABLE_CELLS`.
+const NODES: usize = 2 * TABLE_CELLS + 1;
 
 impl Table {
     /// Tabulates `sigma(y)` and `T_L(y)` on `[0, y_max]` for time step `dt`, finely up to
@@ -195,6 +198,7 @@ impl Table {
         for i in 0..nodes.len() - 1 {
             nodes[i].slope = (nodes[i + 1].sigma - nodes[i].sigma) / (ys[i + 1] - ys[i]);
         }
+        let nodes = nodes.into_boxed_slice().try_into().expect("NODES nodes");
         Self { split, inv_fine: 1.0 / fine, inv_coarse: 1.0 / coarse, nodes }
     }
 
@@ -202,10 +206,12 @@ impl Table {
     #[inline(always)]
     pub fn at(&self, y: f64) -> Node {
         let y = y.max(0.0);
-        let s =
-            if y < self.split { y * self.inv_fine } else { TABLE_CELLS as f64 + (y - self.split) * self.inv_coarse };
-        let last = self.nodes.len() - 2;
-        let i = (s as usize).min(last);
+        // Both grids' coordinates, then a choice, rather than a branch.
+        let (fine, coarse) = (y * self.inv_fine, TABLE_CELLS as f64 + (y - self.split) * self.inv_coarse);
+        let s = if y < self.split { fine } else { coarse };
+        // `s >= 0`, so the index fits an i32 (a cheaper conversion than to usize); clamping
+        // against the constant table length lets the compiler drop the bounds checks.
+        let i = ((s.min((NODES - 2) as f64)) as i32 as usize).min(NODES - 2);
         let f = (s - i as f64).min(1.0);
         // sigma is interpolated (the fluid velocity seen is continuous in y); the time-scale
         // factors and the slope are the cell's own (T_L changes little across a cell).

@@ -13,6 +13,8 @@
 //!   near-wall stochastic dispersion model, tabulated once per run.
 //! - [`scene`]: a whole run's setup: walls (sink, mirror or wall law), forces, integrator, time
 //!   step, injection; validated once.
+//! - `noise` (internal): each particle's random streams and its standard normal variates,
+//!   made a block of steps at a time by a vectorised ziggurat.
 //! - `track` (internal): one particle through the run: the exponential integrator, the
 //!   contacts within a step, the particle's [`Fate`].
 //! - [`run`](mod@run): all particles across cores, reproducibly, and the [`Run`]'s statistics:
@@ -42,6 +44,7 @@ pub mod convergence;
 pub mod correlations;
 pub mod flow;
 pub mod geometry;
+mod noise;
 pub mod run;
 pub mod scene;
 pub mod studies;

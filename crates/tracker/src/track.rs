@@ -46,17 +46,20 @@
 
 use depo_wall_model::energy::{energy_loss, EnergyLoss};
 use glam::DVec3;
-use rand::rngs::Xoshiro256PlusPlus;
-use rand::{Rng, RngExt, SeedableRng};
-use rand_distr::{Distribution, LogNormal, StandardNormal};
+use rand::{Rng, RngExt};
+use rand_distr::{Distribution, LogNormal};
 
 use crate::air::{schiller_naumann, Aerodynamics};
 use crate::flow::FlowField;
 use crate::geometry::Wall;
+use crate::noise::{particle_rng, Normals};
 use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
 
 /// Contacts allowed in one step before a bouncing particle counts as resting on the wall.
 pub const MAX_CONTACTS: usize = 32;
+/// Steps whose normal variates are made in one block (a multiple of four variates for any
+/// scene).
+const STEPS_PER_BLOCK: usize = 8;
 /// Bisection steps for a contact time (to well below 1e-12 of the step).
 const BISECTIONS: usize = 48;
 
@@ -124,6 +127,11 @@ pub(crate) struct Prepared<'a> {
     pub walls: Vec<Wall>,
     pub size: [f64; 3],
     pub walled: [bool; 3],
+    /// Per axis, the walls' coordinates (`0` and the size), infinite along periodic axes.
+    pub lower: [f64; 3],
+    pub upper: [f64; 3],
+    /// True when some axis is periodic.
+    pub periodic: bool,
     pub steps: usize,
 }
 
@@ -131,13 +139,17 @@ impl<'a> Prepared<'a> {
     pub fn new(scene: &'a Scene, injection: &'a Injection) -> Self {
         let size = scene.geometry.size();
         let nu = scene.air.kinematic_viscosity();
+        let walled = scene.geometry.walled();
         Self {
             scene,
             injection,
             field: FlowField::new(&scene.flow, size, nu, scene.dt, scene.drift_correction),
             walls: scene.geometry.walls(),
             size,
-            walled: scene.geometry.walled(),
+            walled,
+            lower: walled.map(|w| if w { 0.0 } else { f64::NEG_INFINITY }),
+            upper: std::array::from_fn(|a| if walled[a] { size[a] } else { f64::INFINITY }),
+            periodic: walled.contains(&false),
             steps: scene.steps(),
         }
     }
@@ -221,34 +233,12 @@ impl Body {
     }
 }
 
-/// A random stream per particle: the same particle draws the same numbers whatever thread
-/// runs it.
-pub(crate) fn particle_rng(seed: u64, id: u64) -> Xoshiro256PlusPlus {
-    Xoshiro256PlusPlus::seed_from_u64(splitmix(seed ^ splitmix(id.wrapping_add(0x5851_f42d_4c95_7f2d))))
-}
-
-/// SplitMix64's finaliser: a bijective mix of 64 bits.
-fn splitmix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
-
-#[inline(always)]
-fn normal(rng: &mut impl Rng) -> f64 {
-    rng.sample(StandardNormal)
-}
-
 /// Distance to the nearer wall across `axis` and the sign of `d(distance)/d(coordinate)`.
 #[inline(always)]
 fn wall_distance(c: f64, length: f64) -> (f64, f64) {
     let upper = length - c;
-    if c <= upper {
-        (c, 1.0)
-    } else {
-        (upper, -1.0)
-    }
+    let lower = c <= upper;
+    (if lower { c } else { upper }, if lower { 1.0 } else { -1.0 })
 }
 
 /// The particle's state between steps.
@@ -291,14 +281,14 @@ fn sample_diameter(size: SizeDistribution, rng: &mut impl Rng) -> f64 {
     }
 }
 
-/// A particle as injected: its constants, where and how it starts, and its random stream.
+/// A particle as injected: its constants, where and how it starts, and its random streams.
 struct Injected {
     body: Body,
     start: [f64; 3],
     x: [f64; 3],
     v: [f64; 3],
     zeta: [f64; 3],
-    rng: Xoshiro256PlusPlus,
+    normals: Normals,
 }
 
 /// Particle `id` at `t = 0`: size, position, velocity (and fluctuation) from its own stream.
@@ -314,9 +304,14 @@ fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
         start[a] = if h > l { rng.random_range(l..h) } else { 0.5 * (l + h) };
     }
     let x = DVec3::from_array(start);
+    let mut normals = Normals::from_rng(&mut rng);
+    let mut z = [0.0; 8];
+    if turb || brown {
+        normals.fill(&mut z);
+    }
     let mut zeta = [0.0; 3];
     if turb {
-        zeta = [normal(&mut rng), normal(&mut rng), normal(&mut rng)];
+        zeta = [z[0], z[1], z[2]];
     }
     let mut v = match p.injection.velocity {
         Some(v) => DVec3::from_array(v),
@@ -324,9 +319,9 @@ fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
     };
     if brown {
         let sd = body.thermal_variance.sqrt();
-        v += DVec3::new(normal(&mut rng), normal(&mut rng), normal(&mut rng)) * sd;
+        v += DVec3::new(z[3], z[4], z[5]) * sd;
     }
-    Injected { body, start, x: start, v: v.to_array(), zeta, rng }
+    Injected { body, start, x: start, v: v.to_array(), zeta, normals }
 }
 
 fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
@@ -338,7 +333,21 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     let field = &p.field;
     let dt = scene.dt;
     let nu = scene.air.kinematic_viscosity();
-    let Injected { mut body, start, x, v, zeta, mut rng } = inject(p, id, TURB, BROWN);
+    let Injected { mut body, start, x, v, zeta, mut normals } = inject(p, id, TURB, BROWN);
+    // The step's normal variates, made STEPS_PER_BLOCK steps at a time: three for the
+    // fluctuations, then two per axis for Brownian motion (one with Euler).
+    let brownian_start = if TURB { 3 } else { 0 };
+    let per_step = brownian_start
+        + if BROWN {
+            if EULER {
+                3
+            } else {
+                6
+            }
+        } else {
+            0
+        };
+    let mut block = [0.0; 9 * STEPS_PER_BLOCK];
     let (mut x, mut v, mut zeta) = (DVec3::from_array(x), DVec3::from_array(v), zeta);
     let diameter = body.aero.diameter;
     let r = body.radius;
@@ -361,8 +370,12 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
 
     for n in 0..p.steps {
         let t0 = n as f64 * dt;
+        if n % STEPS_PER_BLOCK == 0 && per_step > 0 {
+            normals.fill(&mut block[..per_step * STEPS_PER_BLOCK]);
+        }
+        let z = &block[(n % STEPS_PER_BLOCK) * per_step..];
         let uf = if TURB {
-            fluid_velocity_and_fluctuation(field, p.size, x, &mut zeta, &mut rng)
+            fluid_velocity_and_fluctuation(field, p.size, x, &mut zeta, [z[0], z[1], z[2]])
         } else {
             fluid_velocity::<false>(field, p.size, x, &zeta)
         };
@@ -377,13 +390,14 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
         let (bx, bv) = if BROWN {
             let mut bx = DVec3::ZERO;
             let mut bv = DVec3::ZERO;
+            let z = &z[brownian_start..];
             for a in 0..3 {
-                let za = normal(&mut rng);
                 if EULER {
+                    let za = z[a];
                     // Euler-Maruyama: velocity kick of variance 2 kT/m dt/tau; position from v.
                     bv[a] = (2.0 * body.thermal_variance * dt / body.tau).sqrt() * za;
                 } else {
-                    let zb = normal(&mut rng);
+                    let (za, zb) = (z[2 * a], z[2 * a + 1]);
                     bx[a] = body.brownian[0] * za;
                     bv[a] = body.brownian[1] * za + body.brownian[2] * zb;
                 }
@@ -421,7 +435,7 @@ fn fluid_velocity<const TURB: bool>(field: &FlowField, size: [f64; 3], x: DVec3,
     if TURB {
         if let Some(turb) = &field.turbulence {
             for (a, comp) in turb.iter().enumerate() {
-                let (d, _) = wall_distance(x[comp.axis], size[comp.axis]);
+                let (d, _) = wall_distance(x.to_array()[comp.axis], size[comp.axis]);
                 u[a] += comp.table.at(d).sigma * zeta[a];
             }
         }
@@ -449,23 +463,24 @@ fn saffman_lift(field: &FlowField, size: [f64; 3], x: DVec3, uf: DVec3, v: DVec3
 }
 
 /// The fluid velocity seen at `x` (mean plus `sigma zeta`), and one exact Ornstein-Uhlenbeck
-/// step of the normalised fluctuations `zeta` there, from one table lookup per component.
+/// step of the normalised fluctuations `zeta` there driven by the standard normals `normals`,
+/// from one table lookup per component.
 #[inline(always)]
 fn fluid_velocity_and_fluctuation(
     field: &FlowField,
     size: [f64; 3],
     x: DVec3,
     zeta: &mut [f64; 3],
-    rng: &mut impl Rng,
+    normals: [f64; 3],
 ) -> DVec3 {
     let mut u = fluid_velocity::<false>(field, size, x, zeta);
     if let Some(turb) = &field.turbulence {
         for (a, comp) in turb.iter().enumerate() {
-            let (d, sign) = wall_distance(x[comp.axis], size[comp.axis]);
+            let (d, sign) = wall_distance(x.to_array()[comp.axis], size[comp.axis]);
             let node = comp.table.at(d);
             u[a] += node.sigma * zeta[a];
             let drift = if comp.drift { sign * node.slope * node.drift_gain } else { 0.0 };
-            zeta[a] = zeta[a] * node.decay + drift + node.noise * normal(rng);
+            zeta[a] = zeta[a] * node.decay + drift + node.noise * normals[a];
         }
     }
     u
@@ -529,17 +544,19 @@ impl<const EULER: bool> Flight<EULER> {
 
 #[inline(always)]
 fn inside(x: DVec3, r: f64, p: &Prepared<'_>) -> bool {
+    // Periodic axes have no bounds: `[-inf, inf]`.
     let mut ok = true;
-    for a in 0..3 {
-        if p.walled[a] {
-            ok &= x[a] >= r && x[a] <= p.size[a] - r;
-        }
+    for ((x, lower), upper) in x.to_array().into_iter().zip(p.lower).zip(p.upper) {
+        ok &= (x >= lower + r) & (x <= upper - r);
     }
     ok
 }
 
 #[inline(always)]
 fn wrap(mut x: DVec3, p: &Prepared<'_>) -> DVec3 {
+    if !p.periodic {
+        return x;
+    }
     for a in 0..3 {
         if !p.walled[a] {
             x[a] = x[a].rem_euclid(p.size[a]);
@@ -748,14 +765,5 @@ mod tests {
         // Near the upper wall the shear changes sign, and so does the lift.
         let upper = saffman_lift(&field, size, DVec3::new(0.5, 0.5, 0.009), uf, DVec3::new(0.42, 0.0, 0.0), 2.0);
         assert!((upper + lead).abs() < 1e-9, "{upper} {lead}");
-    }
-
-    #[test]
-    fn particle_streams_differ_and_repeat() {
-        let a: u64 = particle_rng(7, 0).random();
-        let b: u64 = particle_rng(7, 1).random();
-        let c: u64 = particle_rng(8, 0).random();
-        assert!(a != b && a != c && b != c);
-        assert_eq!(a, particle_rng(7, 0).random::<u64>());
     }
 }

@@ -17,13 +17,21 @@ fn channel_deposition_at_tau_plus_10_is_within_a_factor_2_of_wood() {
 /// surfaces within 30 % of Lai & Nazaroff (2000) for the same friction velocity.
 #[test]
 fn room_deposition_matches_lai_nazaroff_where_it_is_measurable() {
-    let study = RoomStudy { diameters: vec![0.01e-6, 3e-6], count: 1500, ..RoomStudy::default() };
-    let points = study.run(|_| {}).unwrap();
-    let ultrafine = &points[0];
-    assert!(ultrafine.beta.events > 30, "{ultrafine:?}");
+    // The ultrafine loss rate is counted in deposits (about 7 per 100 particles here): 12000
+    // particles put its statistical error near 4 %, well inside the 30 % asked for (1500 gave
+    // 12 %, and ratios from 1.0 to 1.4 across seeds).
+    let study = RoomStudy { diameters: vec![0.01e-6], count: 12_000, ..RoomStudy::default() };
+    let ultrafine = &study.run(|_| {}).unwrap()[0];
+    assert!(ultrafine.beta.events > 500, "{ultrafine:?}");
     let ratio = ultrafine.beta.value / ultrafine.model_beta;
-    assert!((0.7..1.3).contains(&ratio), "0.01 um: beta ratio {ratio}");
-    let coarse = &points[1];
+    assert!(
+        (0.7..1.3).contains(&ratio),
+        "0.01 um: beta ratio {ratio} +- {}",
+        ultrafine.beta.error / ultrafine.model_beta
+    );
+    let study = RoomStudy { diameters: vec![3e-6], count: 1500, ..RoomStudy::default() };
+    let points = study.run(|_| {}).unwrap();
+    let coarse = &points[0];
     assert!(coarse.floor.events > 100, "{coarse:?}");
     let ratio = coarse.floor.value / coarse.model.floor;
     assert!((0.7..1.3).contains(&ratio), "3 um floor: ratio {ratio}");
