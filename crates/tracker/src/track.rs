@@ -46,11 +46,12 @@
 
 use depo_wall_model::energy::{energy_loss, EnergyLoss};
 use glam::DVec3;
+use multiversion::multiversion;
 use rand::{Rng, RngExt};
 use rand_distr::{Distribution, LogNormal};
 
 use crate::air::{schiller_naumann, Aerodynamics};
-use crate::flow::FlowField;
+use crate::flow::{Component, FlowField};
 use crate::geometry::Wall;
 use crate::noise::{particle_rng, Normals};
 use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
@@ -59,7 +60,7 @@ use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution, WallBehavio
 pub const MAX_CONTACTS: usize = 32;
 /// Steps whose normal variates are made in one block (a multiple of four variates for any
 /// scene).
-const STEPS_PER_BLOCK: usize = 8;
+const STEPS_PER_BLOCK: usize = 16;
 /// Bisection steps for a contact time (to well below 1e-12 of the step).
 const BISECTIONS: usize = 48;
 
@@ -233,6 +234,23 @@ impl Body {
     }
 }
 
+/// The exact Brownian increments of position and velocity over a step along one axis,
+/// `(sx a, cxv a + sv b)`, from the standard normals `a, b` and `[sx, cxv, sv]` of
+/// [`brownian_coefficients`].
+#[inline(always)]
+fn brownian_increment([sx, cxv, sv]: [f64; 3], a: f64, b: f64) -> (f64, f64) {
+    (sx * a, cxv * a + sv * b)
+}
+
+/// One component of the exact drag relaxation over a step (the module's equations): from
+/// `x0, v0` towards `v_inf`, with `(dt, exp(-dt/tau), tau (1 - exp(-dt/tau)))` and the
+/// Brownian increments `bx, bv`. Returns the position and velocity at the step's end.
+#[inline(always)]
+fn relaxed(x0: f64, v0: f64, v_inf: f64, (dt, decay, relax): (f64, f64, f64), bx: f64, bv: f64) -> (f64, f64) {
+    let dv = v0 - v_inf;
+    (x0 + v_inf * dt + dv * relax + bx, v_inf + dv * decay + bv)
+}
+
 /// Distance to the nearer wall across `axis` and the sign of `d(distance)/d(coordinate)`.
 #[inline(always)]
 fn wall_distance(c: f64, length: f64) -> (f64, f64) {
@@ -259,7 +277,10 @@ pub(crate) fn track(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [
     let lift = scene.lift && p.field.profile.is_some();
     // One monomorphised loop per combination of what the scene needs, chosen once for all the
     // particles: each flag becomes a const generic, and the loop carries no code for a force
-    // left out.
+    // left out. Turbulent scenes with the common options step particles side by side.
+    if turb && !(finite_re || euler || lift) {
+        return if brown { run_lanes::<true>(p, ids, tally) } else { run_lanes::<false>(p, ids, tally) };
+    }
     macro_rules! dispatch {
         ([$($done:literal)*] []) => { ids.map(|id| run_particle::<$($done),*>(p, id as u64, tally)).collect() };
         ([$($done:literal)*] [$flag:expr $(, $rest:expr)*]) => {
@@ -397,9 +418,7 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
                     // Euler-Maruyama: velocity kick of variance 2 kT/m dt/tau; position from v.
                     bv[a] = (2.0 * body.thermal_variance * dt / body.tau).sqrt() * za;
                 } else {
-                    let (za, zb) = (z[2 * a], z[2 * a + 1]);
-                    bx[a] = body.brownian[0] * za;
-                    bv[a] = body.brownian[1] * za + body.brownian[2] * zb;
+                    (bx[a], bv[a]) = brownian_increment(body.brownian, z[2 * a], z[2 * a + 1]);
                 }
             }
             (bx, bv)
@@ -423,6 +442,187 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
         }
     }
     record(Fate::Airborne, p.steps as f64 * dt, x, p.steps as u64)
+}
+
+/// Particles stepped side by side by [`run_lanes`].
+const WIDTH: usize = 4;
+
+/// A particle in one of [`run_lanes`]' lanes: what the step itself does not need.
+struct Lane {
+    id: u64,
+    body: Body,
+    start: [f64; 3],
+    normals: Normals,
+    block: [f64; 9 * STEPS_PER_BLOCK],
+    /// Steps taken.
+    n: usize,
+}
+
+/// [`run_particle`] for turbulent scenes with the exponential scheme, Stokes drag and no
+/// lift, [`WIDTH`] particles at a time. Their states sit side by side (one array per coordinate) and each
+/// part of the step runs for all lanes before the next, so the compiler vectorises the
+/// arithmetic across lanes and the processor overlaps the lanes' table look-ups, where one
+/// particle alone, each step waiting on the last, leaves it idle (the turbulent Brownian bench
+/// scene: 34 -> 38 million particle-steps/s on 2 cores; without turbulence there are no
+/// look-ups to overlap and one particle at a time is faster). Each particle takes exactly the
+/// steps, random numbers and contacts it takes alone (a lane whose particle is done takes the
+/// next one), so the records are identical to [`run_particle`]'s (tested); only the order in
+/// which contacts add their energies to the tallies differs.
+#[multiversion(targets("x86_64+avx2+fma"))]
+fn run_lanes<const BROWN: bool>(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [WallTally]) -> Vec<Record> {
+    if p.steps == 0 {
+        return ids.map(|id| run_particle::<BROWN, true, false, false, false>(p, id as u64, tally)).collect();
+    }
+    let dt = p.scene.dt;
+    let field = &p.field;
+    let first = ids.start;
+    let mut records: Vec<Option<Record>> = vec![None; ids.len()];
+    let mut next = ids.start;
+    // Three normals for the fluctuations, then two per axis for Brownian motion.
+    let brownian_start = 3;
+    let per_step = brownian_start + if BROWN { 6 } else { 0 };
+
+    let mut lanes: [Option<Lane>; WIDTH] = Default::default();
+    let (mut x, mut v, mut zeta) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
+    let mut settling = [[0.0; WIDTH]; 3];
+    let (mut decay, mut relax, mut radius) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
+    let mut brownian = [[0.0; WIDTH]; 3];
+
+    let record = |lane: &Lane, fate: Fate, time: f64, at: [f64; 3], steps: u64| Record {
+        fate,
+        time,
+        start: lane.start,
+        position: at,
+        diameter: lane.body.aero.diameter,
+        mass: lane.body.aero.mass,
+        steps,
+    };
+
+    loop {
+        // Empty lanes take the next particles.
+        for l in 0..WIDTH {
+            if lanes[l].is_none() && next < ids.end {
+                let id = next as u64;
+                next += 1;
+                let Injected { body, start, x: x0, v: v0, zeta: z0, normals } = inject(p, id, true, BROWN);
+                for a in 0..3 {
+                    (x[a][l], v[a][l], zeta[a][l], settling[a][l]) = (x0[a], v0[a], z0[a], body.settling[a]);
+                }
+                (decay[l], relax[l], radius[l]) = (body.decay, body.relax, body.radius);
+                for (k, b) in body.brownian.into_iter().enumerate() {
+                    brownian[k][l] = b;
+                }
+                lanes[l] = Some(Lane { id, body, start, normals, block: [0.0; 9 * STEPS_PER_BLOCK], n: 0 });
+            }
+        }
+        if lanes.iter().all(Option::is_none) {
+            break;
+        }
+
+        // This step's normal variates, lane by lane.
+        let mut z = [[0.0; WIDTH]; 9];
+        for (l, lane) in lanes.iter_mut().enumerate() {
+            if let Some(lane) = lane {
+                if lane.n % STEPS_PER_BLOCK == 0 && per_step > 0 {
+                    lane.normals.fill(&mut lane.block[..per_step * STEPS_PER_BLOCK]);
+                }
+                let step = &lane.block[(lane.n % STEPS_PER_BLOCK) * per_step..][..per_step];
+                for (k, &zk) in step.iter().enumerate() {
+                    z[k][l] = zk;
+                }
+            }
+        }
+
+        // The step, for all lanes at once (an empty lane computes on stale values, unused).
+        let mut uf = [[0.0; WIDTH]; 3];
+        for l in 0..WIDTH {
+            let xl = DVec3::new(x[0][l], x[1][l], x[2][l]);
+            let u = fluid_velocity::<false>(field, p.size, xl, &[0.0; 3]);
+            for a in 0..3 {
+                uf[a][l] = u[a];
+            }
+        }
+        if let Some(turb) = &field.turbulence {
+            for (a, comp) in turb.iter().enumerate() {
+                for l in 0..WIDTH {
+                    let (du, next) = fluctuation(comp, x[comp.axis][l], p.size[comp.axis], zeta[a][l], z[a][l]);
+                    uf[a][l] += du;
+                    zeta[a][l] = next;
+                }
+            }
+        }
+        let (mut x1, mut v1) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
+        let (mut bx, mut bv) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
+        for a in 0..3 {
+            for l in 0..WIDTH {
+                if BROWN {
+                    let (za, zb) = (z[brownian_start + 2 * a][l], z[brownian_start + 2 * a + 1][l]);
+                    let coefficients = [brownian[0][l], brownian[1][l], brownian[2][l]];
+                    (bx[a][l], bv[a][l]) = brownian_increment(coefficients, za, zb);
+                }
+                let v_inf = uf[a][l] + settling[a][l];
+                let relaxation = (dt, decay[l], relax[l]);
+                (x1[a][l], v1[a][l]) = relaxed(x[a][l], v[a][l], v_inf, relaxation, bx[a][l], bv[a][l]);
+            }
+        }
+        let mut ok = [true; WIDTH];
+        for l in 0..WIDTH {
+            ok[l] = inside(DVec3::new(x1[0][l], x1[1][l], x1[2][l]), radius[l], p);
+        }
+
+        // What each particle does with its step.
+        for l in 0..WIDTH {
+            let Some(lane) = &mut lanes[l] else { continue };
+            let n = lane.n;
+            lane.n += 1;
+            let t0 = n as f64 * dt;
+            let done = if ok[l] {
+                let xw = wrap(DVec3::new(x1[0][l], x1[1][l], x1[2][l]), p);
+                let vw = DVec3::new(v1[0][l], v1[1][l], v1[2][l]);
+                for a in 0..3 {
+                    (x[a][l], v[a][l]) = (xw[a], vw[a]);
+                }
+                if !(xw.is_finite() && vw.is_finite()) {
+                    Some(record(lane, Fate::Escaped, t0 + dt, xw.to_array(), n as u64 + 1))
+                } else {
+                    None
+                }
+            } else {
+                let body = &lane.body;
+                let flight = Flight::<false> {
+                    x0: DVec3::new(x[0][l], x[1][l], x[2][l]),
+                    v0: DVec3::new(v[0][l], v[1][l], v[2][l]),
+                    v_inf: DVec3::new(uf[0][l], uf[1][l], uf[2][l]) + body.settling,
+                    tau: body.tau,
+                    decay: body.decay,
+                    relax: body.relax,
+                    dt,
+                    bx: DVec3::new(bx[0][l], bx[1][l], bx[2][l]),
+                    bv: DVec3::new(bv[0][l], bv[1][l], bv[2][l]),
+                };
+                let state = State { x: flight.x0, v: flight.v0, zeta: [zeta[0][l], zeta[1][l], zeta[2][l]] };
+                match contacts::<false>(p, body, flight, state, tally) {
+                    AfterContacts::Airborne(s) => {
+                        for a in 0..3 {
+                            (x[a][l], v[a][l], zeta[a][l]) = (s.x[a], s.v[a], s.zeta[a]);
+                        }
+                        None
+                    }
+                    AfterContacts::Left(fate, t, at) => Some(record(lane, fate, t0 + t, at.to_array(), n as u64 + 1)),
+                }
+            };
+            let done = done.or_else(|| {
+                (lane.n == p.steps).then(|| {
+                    record(lane, Fate::Airborne, p.steps as f64 * dt, [x[0][l], x[1][l], x[2][l]], p.steps as u64)
+                })
+            });
+            if let Some(rec) = done {
+                records[lane.id as usize - first] = Some(rec);
+                lanes[l] = None;
+            }
+        }
+    }
+    records.into_iter().map(|r| r.expect("every particle recorded")).collect()
 }
 
 /// The mean flow plus the fluctuation `sigma zeta` at `x`.
@@ -476,14 +676,24 @@ fn fluid_velocity_and_fluctuation(
     let mut u = fluid_velocity::<false>(field, size, x, zeta);
     if let Some(turb) = &field.turbulence {
         for (a, comp) in turb.iter().enumerate() {
-            let (d, sign) = wall_distance(x.to_array()[comp.axis], size[comp.axis]);
-            let node = comp.table.at(d);
-            u[a] += node.sigma * zeta[a];
-            let drift = if comp.drift { sign * node.slope * node.drift_gain } else { 0.0 };
-            zeta[a] = zeta[a] * node.decay + drift + node.noise * normals[a];
+            let (du, next) = fluctuation(comp, x.to_array()[comp.axis], size[comp.axis], zeta[a], normals[a]);
+            u[a] += du;
+            zeta[a] = next;
         }
     }
     u
+}
+
+/// One fluctuating component at coordinate `c` across a domain of `length` (m): the velocity
+/// `sigma zeta` it adds to the fluid's, and `zeta` after one exact Ornstein-Uhlenbeck step
+/// (with the well-mixed drift where the component has one) driven by the standard normal
+/// `normal`.
+#[inline(always)]
+fn fluctuation(comp: &Component, c: f64, length: f64, zeta: f64, normal: f64) -> (f64, f64) {
+    let (d, sign) = wall_distance(c, length);
+    let node = comp.table.at(d);
+    let drift = if comp.drift { sign * node.slope * node.drift_gain } else { 0.0 };
+    (node.sigma * zeta, zeta * node.decay + drift + node.noise * normal)
 }
 
 /// The trajectory of one (part of a) step.
@@ -510,8 +720,10 @@ impl<const EULER: bool> Flight<EULER> {
             let v = self.v0 + (self.v_inf - self.v0) * (self.dt / self.tau) + self.bv;
             (x, v)
         } else {
-            let dv = self.v0 - self.v_inf;
-            (self.x0 + self.v_inf * self.dt + dv * self.relax + self.bx, self.v_inf + dv * self.decay + self.bv)
+            let [x0, v0, v_inf, bx, bv] = [self.x0, self.v0, self.v_inf, self.bx, self.bv].map(|q| q.to_array());
+            let axis = |a: usize| relaxed(x0[a], v0[a], v_inf[a], (self.dt, self.decay, self.relax), bx[a], bv[a]);
+            let [(x, vx), (y, vy), (z, vz)] = [axis(0), axis(1), axis(2)];
+            (DVec3::new(x, y, z), DVec3::new(vx, vy, vz))
         }
     }
 
@@ -682,6 +894,58 @@ fn contacts<const EULER: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::flow::Flow;
+    use crate::geometry::Geometry;
+    use depo_wall_model::WallLaw;
+
+    /// `run_lanes` must give each particle exactly what `run_particle` gives it alone: same
+    /// records bit for bit, same wall contacts.
+    fn lanes_match_one_at_a_time<const BROWN: bool>(scene: &Scene, injection: &Injection) -> usize {
+        let p = Prepared::new(scene, injection);
+        let walls = p.walls.len();
+        let (mut lane_tally, mut alone_tally) = (vec![WallTally::default(); walls], vec![WallTally::default(); walls]);
+        let lanes = run_lanes::<BROWN>(&p, 0..injection.count, &mut lane_tally);
+        let alone: Vec<Record> = (0..injection.count as u64)
+            .map(|id| run_particle::<BROWN, true, false, false, false>(&p, id, &mut alone_tally))
+            .collect();
+        assert_eq!(lanes, alone);
+        for (a, b) in lane_tally.iter().zip(&alone_tally) {
+            assert_eq!(
+                (a.contacts, a.rebounds, a.captures, a.resting),
+                (b.contacts, b.rebounds, b.captures, b.resting)
+            );
+            assert!((a.energy.material - b.energy.material).abs() <= 1e-12 * b.energy.material.abs());
+        }
+        let fates = |f: fn(&Fate) -> bool| lanes.iter().filter(|r| f(&r.fate)).count();
+        let (deposited, airborne) =
+            (fates(|f| matches!(f, Fate::Deposited(_))), fates(|f| matches!(f, Fate::Airborne)));
+        let contacts: u64 = lane_tally.iter().map(|t| t.contacts).sum();
+        assert!(contacts > 0 && airborne > 0, "{contacts} contacts, {airborne} airborne: both paths must be seen");
+        deposited
+    }
+
+    #[test]
+    fn lanes_give_each_particle_what_it_gets_alone() {
+        // A small turbulent room whose walls rebound particles by the law, and a turbulent
+        // channel (periodic along and across) whose walls absorb them. 37 particles, so that
+        // the lanes refill unevenly (as particles deposit) and the last ones run part-empty.
+        let law = WallLaw::preset("dunn1995-stainless").unwrap();
+        let mut room = Scene::new(Geometry::Room { size: [0.05, 0.04, 0.03] }, 0.01, 3.0)
+            .with_walls(WallBehaviour::Law { law, size: None });
+        room.flow = Flow::TurbulentRoom { friction_velocity: 0.05, core_rms: 0.1, core_time: 0.5, blend_length: 0.01 };
+        room.brownian = true;
+        let fine = Injection::new(37, SizeDistribution::Monodisperse { diameter: 2e-6 }, 1000.0);
+        lanes_match_one_at_a_time::<true>(&room, &fine);
+        lanes_match_one_at_a_time::<false>(&room, &fine);
+
+        let mut channel = Scene::new(Geometry::Channel { length: 0.05, width: 0.02, height: 0.01 }, 1e-4, 0.3);
+        channel.flow = Flow::TurbulentChannel { friction_velocity: 0.3 };
+        channel.brownian = true;
+        channel.gravity = [0.0; 3];
+        let particles = Injection::new(37, SizeDistribution::Monodisperse { diameter: 20e-6 }, 1000.0);
+        assert!(lanes_match_one_at_a_time::<true>(&channel, &particles) > 0);
+        assert!(lanes_match_one_at_a_time::<false>(&channel, &particles) > 0);
+    }
 
     #[test]
     fn brownian_step_has_the_ornstein_uhlenbeck_moments() {
