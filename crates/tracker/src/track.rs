@@ -355,19 +355,8 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     let dt = scene.dt;
     let nu = scene.air.kinematic_viscosity();
     let Injected { mut body, start, x, v, zeta, mut normals } = inject(p, id, TURB, BROWN);
-    // The step's normal variates, made STEPS_PER_BLOCK steps at a time: three for the
-    // fluctuations, then two per axis for Brownian motion (one with Euler).
-    let brownian_start = if TURB { 3 } else { 0 };
-    let per_step = brownian_start
-        + if BROWN {
-            if EULER {
-                3
-            } else {
-                6
-            }
-        } else {
-            0
-        };
+    // The step's normal variates, made STEPS_PER_BLOCK steps at a time.
+    let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
     let mut block = [0.0; 9 * STEPS_PER_BLOCK];
     let (mut x, mut v, mut zeta) = (DVec3::from_array(x), DVec3::from_array(v), zeta);
     let diameter = body.aero.diameter;
@@ -444,6 +433,18 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     record(Fate::Airborne, p.steps as f64 * dt, x, p.steps as u64)
 }
 
+/// Where a step's Brownian normals start among its variates, and how many it draws: three for
+/// the fluctuations when turbulent, then two per axis for Brownian motion (one with Euler).
+fn normals_per_step(turb: bool, brown: bool, euler: bool) -> (usize, usize) {
+    let brownian_start = if turb { 3 } else { 0 };
+    let brownian = match (brown, euler) {
+        (false, _) => 0,
+        (true, true) => 3,
+        (true, false) => 6,
+    };
+    (brownian_start, brownian_start + brownian)
+}
+
 /// Particles stepped side by side by [`run_lanes`].
 const WIDTH: usize = 4;
 
@@ -459,15 +460,15 @@ struct Lane {
 }
 
 /// [`run_particle`] for turbulent scenes with the exponential scheme, Stokes drag and no
-/// lift, [`WIDTH`] particles at a time. Their states sit side by side (one array per coordinate) and each
-/// part of the step runs for all lanes before the next, so the compiler vectorises the
-/// arithmetic across lanes and the processor overlaps the lanes' table look-ups, where one
-/// particle alone, each step waiting on the last, leaves it idle (the turbulent Brownian bench
-/// scene: 34 -> 38 million particle-steps/s on 2 cores; without turbulence there are no
-/// look-ups to overlap and one particle at a time is faster). Each particle takes exactly the
-/// steps, random numbers and contacts it takes alone (a lane whose particle is done takes the
-/// next one), so the records are identical to [`run_particle`]'s (tested); only the order in
-/// which contacts add their energies to the tallies differs.
+/// lift, [`WIDTH`] particles at a time. Their states sit side by side (one array per
+/// coordinate) and each part of the step runs for all lanes before the next, so the compiler
+/// vectorises the arithmetic across lanes and the processor overlaps the lanes' table
+/// look-ups, where one particle alone, each step waiting on the last, leaves it idle (the
+/// turbulent Brownian bench scene: 34 -> 37.5 million particle-steps/s on 2 cores; without
+/// turbulence there are no look-ups to overlap and one particle at a time is faster). Each
+/// particle takes exactly the steps, random numbers and contacts it takes alone (a lane whose
+/// particle is done takes the next one), so the records are identical to [`run_particle`]'s
+/// (tested); only the order in which contacts add their energies to the tallies differs.
 #[multiversion(targets("x86_64+avx2+fma"))]
 fn run_lanes<const BROWN: bool>(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [WallTally]) -> Vec<Record> {
     if p.steps == 0 {
@@ -478,9 +479,7 @@ fn run_lanes<const BROWN: bool>(p: &Prepared<'_>, ids: std::ops::Range<usize>, t
     let first = ids.start;
     let mut records: Vec<Option<Record>> = vec![None; ids.len()];
     let mut next = ids.start;
-    // Three normals for the fluctuations, then two per axis for Brownian motion.
-    let brownian_start = 3;
-    let per_step = brownian_start + if BROWN { 6 } else { 0 };
+    let (brownian_start, per_step) = normals_per_step(true, BROWN, false);
 
     let mut lanes: [Option<Lane>; WIDTH] = Default::default();
     let (mut x, mut v, mut zeta) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
