@@ -145,14 +145,17 @@ impl Flow {
 pub(crate) struct Node {
     /// `sigma`, m/s (or the mean velocity for a mean-flow table).
     pub sigma: f64,
+    /// The rise of `sigma` to the next node, m/s (what [`Table::at`] interpolates with).
+    pub rise: f64,
     /// `d sigma / dy` over the cell from this node to the next, 1/s.
     pub slope: f64,
     /// `exp(-dt / T_L)`.
     pub decay: f64,
     /// `sqrt(1 - decay^2)`.
     pub noise: f64,
-    /// `T_L (1 - decay)`, s.
-    pub drift_gain: f64,
+    /// The well-mixed drift added to the normalised fluctuation `zeta` over a step,
+    /// `T_L (1 - decay) d sigma / dy` (dimensionless), for a step away from the wall.
+    pub drift: f64,
 }
 
 /// A profile of the distance `y` to the nearer wall, tabulated once per run on two uniform
@@ -186,17 +189,23 @@ impl Table {
             .map(|&y| {
                 let (sigma, t) = f(y);
                 let decay = if t > 0.0 { (-dt / t).exp() } else { 0.0 };
+                // `drift` holds T_L (1 - decay) until the slope is known.
                 Node {
                     sigma,
+                    rise: 0.0,
                     slope: 0.0,
                     decay,
                     noise: (1.0 - decay * decay).max(0.0).sqrt(),
-                    drift_gain: t * (1.0 - decay),
+                    drift: t * (1.0 - decay),
                 }
             })
             .collect();
         for i in 0..nodes.len() - 1 {
-            nodes[i].slope = (nodes[i + 1].sigma - nodes[i].sigma) / (ys[i + 1] - ys[i]);
+            nodes[i].rise = nodes[i + 1].sigma - nodes[i].sigma;
+            nodes[i].slope = nodes[i].rise / (ys[i + 1] - ys[i]);
+        }
+        for node in &mut nodes {
+            node.drift *= node.slope;
         }
         let nodes = nodes.into_boxed_slice().try_into().expect("NODES nodes");
         Self { split, inv_fine: 1.0 / fine, inv_coarse: 1.0 / coarse, nodes }
@@ -215,8 +224,8 @@ impl Table {
         let f = (s - i as f64).min(1.0);
         // sigma is interpolated (the fluid velocity seen is continuous in y); the time-scale
         // factors and the slope are the cell's own (T_L changes little across a cell).
-        let (a, b) = (self.nodes[i], self.nodes[i + 1]);
-        Node { sigma: a.sigma + f * (b.sigma - a.sigma), ..a }
+        let a = self.nodes[i];
+        Node { sigma: a.sigma + f * a.rise, ..a }
     }
 }
 
@@ -323,7 +332,7 @@ mod tests {
         let n = t.at(0.5);
         assert!((n.decay - (-0.1f64).exp()).abs() < 1e-12);
         assert!((n.noise - (1.0 - n.decay * n.decay).sqrt()).abs() < 1e-12);
-        assert!((n.drift_gain - (1.0 - n.decay)).abs() < 1e-12);
+        assert!((n.drift - (1.0 - n.decay) * n.slope).abs() < 1e-12);
     }
 
     #[test]
