@@ -357,10 +357,9 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     let field = &p.field;
     let dt = scene.dt;
     let nu = scene.air.kinematic_viscosity();
-    let Injected { mut body, start, x, v, zeta, mut normals } = inject(p, id, TURB, BROWN);
-    // The step's normal variates, made STEPS_PER_BLOCK steps at a time.
+    let Injected { mut body, start, x, v, zeta, normals } = inject(p, id, TURB, BROWN);
     let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
-    let mut block = [0.0; 9 * STEPS_PER_BLOCK];
+    let mut draws = StepNormals::new(normals);
     let (mut x, mut v, mut zeta) = (DVec3::from_array(x), DVec3::from_array(v), zeta);
     let diameter = body.aero.diameter;
     let r = body.radius;
@@ -383,10 +382,7 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
 
     for n in 0..p.steps {
         let t0 = n as f64 * dt;
-        if n % STEPS_PER_BLOCK == 0 && per_step > 0 {
-            normals.fill(&mut block[..per_step * STEPS_PER_BLOCK]);
-        }
-        let z = &block[(n % STEPS_PER_BLOCK) * per_step..];
+        let z = draws.step(n, per_step);
         let uf = if TURB {
             fluid_velocity_and_fluctuation(field, p.size, x, &mut zeta, [z[0], z[1], z[2]])
         } else {
@@ -448,6 +444,28 @@ fn normals_per_step(turb: bool, brown: bool, euler: bool) -> (usize, usize) {
     (brownian_start, brownian_start + brownian)
 }
 
+/// A particle's normal variates for its steps, made [`STEPS_PER_BLOCK`] steps at a time.
+struct StepNormals {
+    normals: Normals,
+    block: [f64; 9 * STEPS_PER_BLOCK],
+}
+
+impl StepNormals {
+    fn new(normals: Normals) -> Self {
+        Self { normals, block: [0.0; 9 * STEPS_PER_BLOCK] }
+    }
+
+    /// The `per_step` variates of step `n` (steps taken in order from 0, the same `per_step`
+    /// each time: a constant of the caller, which the compiler folds into the indexing).
+    #[inline(always)]
+    fn step(&mut self, n: usize, per_step: usize) -> &[f64] {
+        if n % STEPS_PER_BLOCK == 0 && per_step > 0 {
+            self.normals.fill(&mut self.block[..per_step * STEPS_PER_BLOCK]);
+        }
+        &self.block[(n % STEPS_PER_BLOCK) * per_step..][..per_step]
+    }
+}
+
 /// Particles stepped side by side by [`run_lanes`].
 const WIDTH: usize = 4;
 
@@ -456,8 +474,7 @@ struct Lane {
     id: u64,
     body: Body,
     start: [f64; 3],
-    normals: Normals,
-    block: [f64; 9 * STEPS_PER_BLOCK],
+    draws: StepNormals,
     /// Steps taken.
     n: usize,
 }
@@ -514,7 +531,7 @@ fn run_lanes<const BROWN: bool>(p: &Prepared<'_>, ids: std::ops::Range<usize>, t
                 for (k, b) in body.brownian.into_iter().enumerate() {
                     brownian[k][l] = b;
                 }
-                lanes[l] = Some(Lane { id, body, start, normals, block: [0.0; 9 * STEPS_PER_BLOCK], n: 0 });
+                lanes[l] = Some(Lane { id, body, start, draws: StepNormals::new(normals), n: 0 });
             }
         }
         if lanes.iter().all(Option::is_none) {
@@ -525,11 +542,7 @@ fn run_lanes<const BROWN: bool>(p: &Prepared<'_>, ids: std::ops::Range<usize>, t
         let mut z = [[0.0; WIDTH]; 9];
         for (l, lane) in lanes.iter_mut().enumerate() {
             if let Some(lane) = lane {
-                if lane.n % STEPS_PER_BLOCK == 0 && per_step > 0 {
-                    lane.normals.fill(&mut lane.block[..per_step * STEPS_PER_BLOCK]);
-                }
-                let step = &lane.block[(lane.n % STEPS_PER_BLOCK) * per_step..][..per_step];
-                for (k, &zk) in step.iter().enumerate() {
+                for (k, &zk) in lane.draws.step(lane.n, per_step).iter().enumerate() {
                     z[k][l] = zk;
                 }
             }
