@@ -25,8 +25,8 @@ fn bench_scenario<T: Real>(c: &mut Criterion, pool: &rayon::ThreadPool, template
     for n in SIZES {
         let scenario = Scenario { n, ..template };
         let law = scenario.law();
-        let pristine = Workload::<T>::random(n, scenario.spin, 7);
-        let mut work = Workload::<T>::random(n, scenario.spin, 7);
+        let pristine = Workload::<T>::for_scenario(&scenario, 7);
+        let mut work = Workload::<T>::for_scenario(&scenario, 7);
         let (mut law_time, mut copy_time) = (Duration::ZERO, Duration::ZERO);
         group.throughput(Throughput::Elements(n as u64));
         group.bench_function(BenchmarkId::from_parameter(n), |b| {

@@ -38,6 +38,9 @@ pub struct Scenario {
     pub friction: bool,
     /// Whether a tally (counts and energy) is kept.
     pub tally: bool,
+    /// The wall normal `(0.6, 0, 0.8)` instead of `+z`: the general loop rather than the one
+    /// for walls along a coordinate axis.
+    pub tilted: bool,
     /// Number of impacts per call.
     pub n: usize,
 }
@@ -64,6 +67,7 @@ impl Scenario {
             if self.spin { " spin" } else { "" }
         ) + if self.friction { "" } else { " mu=0" }
             + if self.tally { " tally" } else { "" }
+            + if self.tilted { " tilted" } else { "" }
     }
 
     /// The law used: the li1997-sio2 constants with the scenario's exponents and friction 0.3
@@ -117,8 +121,8 @@ impl Measurement {
 }
 
 /// Structure-of-arrays particle state owned by a benchmark: random impacts on a floor
-/// (normal +z), normal speeds log-uniform over 0.01..10 m/s (both sides of the law's `vc`),
-/// tangential speeds up to 1 m/s, spins up to 1e4 rad/s, radii 10..100 um.
+/// (normal +z) or a tilted wall, normal speeds log-uniform over 0.01..10 m/s (both sides of the
+/// law's `vc`), tangential speeds up to 1 m/s, spins up to 1e4 rad/s, radii 10..100 um.
 pub struct Workload<T> {
     /// Velocity components, m/s.
     pub v: [Vec<T>; 3],
@@ -128,6 +132,8 @@ pub struct Workload<T> {
     pub radius: Vec<T>,
     /// One outcome per particle.
     pub outcome: Vec<Outcome>,
+    /// The wall normal of the whole batch.
+    pub normal: [T; 3],
 }
 
 impl<T: Real> Workload<T> {
@@ -150,7 +156,34 @@ impl<T: Real> Workload<T> {
             spin_column(&mut |r| r.random_range(-1e4..1e4)),
         ];
         let radius = spin_column(&mut |r| r.random_range(1e-5..1e-4));
-        Self { v: [vx, vy, vz], w, radius, outcome: vec![Outcome::default(); n] }
+        Self { v: [vx, vy, vz], w, radius, outcome: vec![Outcome::default(); n], normal: [T::ZERO, T::ZERO, T::ONE] }
+    }
+
+    /// The same impacts against the wall with normal `(0.6, 0, 0.8)`: velocities and spins
+    /// rotated about `y` by the angle that takes `+z` to that normal.
+    #[must_use]
+    pub fn tilted(mut self) -> Self {
+        let (c, s) = (T::from_f64(0.8), T::from_f64(0.6));
+        let rotate = |[x, _, z]: &mut [Vec<T>; 3]| {
+            for (x, z) in x.iter_mut().zip(z.iter_mut()) {
+                (*x, *z) = (c * *x + s * *z, c * *z - s * *x);
+            }
+        };
+        rotate(&mut self.v);
+        rotate(&mut self.w);
+        self.normal = [s, T::ZERO, c];
+        self
+    }
+
+    /// The workload of `scenario`: [`Workload::random`], tilted if the scenario says so.
+    #[must_use]
+    pub fn for_scenario(scenario: &Scenario, seed: u64) -> Self {
+        let work = Self::random(scenario.n, scenario.spin, seed);
+        if scenario.tilted {
+            work.tilted()
+        } else {
+            work
+        }
     }
 
     /// Copies the particle state back from `pristine` (untimed, between timed calls).
@@ -164,8 +197,8 @@ impl<T: Real> Workload<T> {
     /// Applies `law` to the whole workload, with a tally when `tally`.
     pub fn law_kernel(&mut self, law: &WallLaw, tally: bool) {
         let [vx, vy, vz] = &mut self.v;
-        let batch = Impacts::new([vx, vy, vz], Normals::Uniform([T::ZERO, T::ZERO, T::ONE]), &mut self.outcome)
-            .expect("consistent arrays");
+        let batch =
+            Impacts::new([vx, vy, vz], Normals::Uniform(self.normal), &mut self.outcome).expect("consistent arrays");
         let batch = if self.radius.is_empty() {
             batch
         } else {
@@ -237,8 +270,8 @@ pub fn timed(pool: &ThreadPool, f: impl FnOnce() + Send) -> Duration {
 
 fn measure_typed<T: Real>(scenario: Scenario, pool: &ThreadPool, reps: usize) -> Measurement {
     let law = scenario.law();
-    let pristine = Workload::<T>::random(scenario.n, scenario.spin, 42);
-    let mut state = Workload::<T>::random(scenario.n, scenario.spin, 42);
+    let pristine = Workload::<T>::for_scenario(&scenario, 42);
+    let mut state = Workload::<T>::for_scenario(&scenario, 42);
     let (mut kernel, mut ceiling) = (Vec::new(), Vec::new());
     for rep in 0..reps + 1 {
         state.restore(&pristine);
@@ -276,19 +309,42 @@ pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
                 ((1.3, 0.7), PowerMode::Fast),
                 ((1.3, 0.7), PowerMode::Exact),
             ] {
-                out.push(Scenario { precision, exponents, power, spin, friction: true, tally: false, n });
+                out.push(Scenario {
+                    precision,
+                    exponents,
+                    power,
+                    spin,
+                    friction: true,
+                    tally: false,
+                    tilted: false,
+                    n,
+                });
             }
         }
     }
     for precision in [Precision::F64, Precision::F32] {
         for exponents in [(1.0, 1.0), (1.0, 0.5)] {
             let power = PowerMode::Fast;
-            out.push(Scenario { precision, exponents, power, spin: false, friction: false, tally: false, n });
+            out.push(Scenario {
+                precision,
+                exponents,
+                power,
+                spin: false,
+                friction: false,
+                tally: false,
+                tilted: false,
+                n,
+            });
         }
     }
     for precision in [Precision::F64, Precision::F32] {
         let (exponents, power) = ((1.0, 0.5), PowerMode::Fast);
-        out.push(Scenario { precision, exponents, power, spin: false, friction: true, tally: true, n });
+        out.push(Scenario { precision, exponents, power, spin: false, friction: true, tally: true, tilted: false, n });
+    }
+    // The general loop, for a wall that is not along a coordinate axis.
+    for spin in [false, true] {
+        let (precision, exponents, power) = (Precision::F64, (1.0, 0.5), PowerMode::Fast);
+        out.push(Scenario { precision, exponents, power, spin, friction: true, tally: false, tilted: true, n });
     }
     out
 }
@@ -299,18 +355,19 @@ pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
 #[must_use]
 pub fn error_against_reference(scenario: Scenario, n: usize) -> f64 {
     let reference_law = Scenario { precision: Precision::F64, power: PowerMode::Exact, ..scenario }.law();
-    let mut reference = Workload::<f64>::random(n, scenario.spin, 11);
-    let incoming = Workload::<f64>::random(n, scenario.spin, 11);
+    let scenario = Scenario { n, ..scenario };
+    let mut reference = Workload::<f64>::for_scenario(&scenario, 11);
+    let incoming = Workload::<f64>::for_scenario(&scenario, 11);
     reference.law_kernel(&reference_law, false);
     let law = scenario.law();
     let (v, w): ([Vec<f64>; 3], [Vec<f64>; 3]) = match scenario.precision {
         Precision::F64 => {
-            let mut work = Workload::<f64>::random(n, scenario.spin, 11);
+            let mut work = Workload::<f64>::for_scenario(&scenario, 11);
             work.law_kernel(&law, false);
             (work.v, work.w)
         }
         Precision::F32 => {
-            let mut work = Workload::<f32>::random(n, scenario.spin, 11);
+            let mut work = Workload::<f32>::for_scenario(&scenario, 11);
             work.law_kernel(&law, false);
             let widen = |c: &Vec<f32>| c.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
             (work.v.each_ref().map(widen), work.w.each_ref().map(widen))

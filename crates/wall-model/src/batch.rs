@@ -113,6 +113,15 @@ fn check_len(field: &'static str, expected: usize, found: usize) -> Result<(), B
 }
 
 impl<'a, T: Real> Impacts<'a, T> {
+    /// Rotates the velocity and spin components left by `mid` (a cyclic rotation of the
+    /// axes, which keeps cross products): after it, component `k` is the old `(k + mid) % 3`.
+    pub(crate) fn rotate_axes(&mut self, mid: usize) {
+        self.velocity.rotate_left(mid);
+        if let Some(spin) = &mut self.spin {
+            spin.w.rotate_left(mid);
+        }
+    }
+
     /// A batch without spin. All arrays must have the same length; a uniform normal must be
     /// of unit length within 1e-4.
     pub fn new(

@@ -76,8 +76,125 @@ fn axpy<T: Real>(a: T, x: [T; 3], y: [T; 3]) -> [T; 3] {
     [a * x[0] + y[0], a * x[1] + y[1], a * x[2] + y[2]]
 }
 
-/// Resolves one impact. `v`, `w` (rad/s), `radius` (m) and the unit normal `n` are the state at
-/// contact; `w` and `radius` are ignored unless `SPIN`, friction is skipped unless `FRICTION`.
+/// A vector in the wall's plane: three components in general, two when the wall is aligned
+/// with the coordinate axes ([`AxisNormal`]).
+pub trait Tangent<T: Real>: Copy {
+    /// The zero vector.
+    fn zero() -> Self;
+    /// `a x + y`.
+    #[must_use]
+    fn axpy(a: T, x: Self, y: Self) -> Self;
+    /// `x + y`.
+    #[must_use]
+    fn add(x: Self, y: Self) -> Self;
+    /// The dot product, summed left to right.
+    fn dot(self, other: Self) -> T;
+}
+
+impl<T: Real, const N: usize> Tangent<T> for [T; N] {
+    #[inline(always)]
+    fn zero() -> Self {
+        [T::ZERO; N]
+    }
+    #[inline(always)]
+    fn axpy(a: T, x: Self, y: Self) -> Self {
+        std::array::from_fn(|i| a * x[i] + y[i])
+    }
+    #[inline(always)]
+    fn add(x: Self, y: Self) -> Self {
+        std::array::from_fn(|i| x[i] + y[i])
+    }
+    #[inline(always)]
+    fn dot(self, other: Self) -> T {
+        let mut sum = self[0] * other[0];
+        for i in 1..N {
+            sum += self[i] * other[i];
+        }
+        sum
+    }
+}
+
+/// The wall normal `n` as the impact formulas use it: everything they need of `n` is one of
+/// these operations. A plain `[T; 3]` is any unit normal; [`AxisNormal`] is a wall aligned with
+/// the coordinate axes, for which the products with the normal's zero components are not
+/// computed at all (the batch kernel's cheaper loop for rooms and channels). Both give the
+/// same results, up to the sign of components that are zero.
+pub trait Frame<T: Real>: Copy {
+    /// Vectors in the wall's plane.
+    type Tangent: Tangent<T>;
+    /// The normal part `vn n` of a velocity, in the form [`Frame::compose`] takes it.
+    type NormalPart: Copy;
+    /// Splits `v` into `vn = v . n`, the normal part `vn n` and the tangential part `v - vn n`.
+    fn split(self, v: [T; 3]) -> (T, Self::NormalPart, Self::Tangent);
+    /// `t + a vn n`: a velocity from a tangential part and a multiple of a normal part.
+    fn compose(self, t: Self::Tangent, a: T, normal_part: Self::NormalPart) -> [T; 3];
+    /// `w x n`, the contact point's velocity per unit radius (1/s) from the spin `w` (rad/s).
+    fn spin_velocity(self, w: [T; 3]) -> Self::Tangent;
+    /// `w + a (n x x)`: the spin `w` after a tangential impulse `x`, with `a` in 1/m.
+    fn spin_kick(self, w: [T; 3], a: T, x: Self::Tangent) -> [T; 3];
+}
+
+/// Any unit normal.
+impl<T: Real> Frame<T> for [T; 3] {
+    type Tangent = [T; 3];
+    type NormalPart = [T; 3];
+    #[inline(always)]
+    fn split(self, v: [T; 3]) -> (T, [T; 3], [T; 3]) {
+        let vn = dot(v, self);
+        let v_n = [vn * self[0], vn * self[1], vn * self[2]];
+        (vn, v_n, [v[0] - v_n[0], v[1] - v_n[1], v[2] - v_n[2]])
+    }
+    #[inline(always)]
+    fn compose(self, t: [T; 3], a: T, normal_part: [T; 3]) -> [T; 3] {
+        axpy(a, normal_part, t)
+    }
+    #[inline(always)]
+    fn spin_velocity(self, w: [T; 3]) -> [T; 3] {
+        cross(w, self)
+    }
+    #[inline(always)]
+    fn spin_kick(self, w: [T; 3], a: T, x: [T; 3]) -> [T; 3] {
+        axpy(a, cross(self, x), w)
+    }
+}
+
+/// A wall normal along the third coordinate axis, `n = (0, 0, sign)` with `sign = +-1`.
+/// Walls along the other axes use it too: the batch kernel rotates the velocity and spin
+/// components cyclically so that the wall's axis comes third (a cyclic rotation keeps every
+/// cross product).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AxisNormal<T> {
+    /// `+1` or `-1`.
+    pub sign: T,
+}
+
+impl<T: Real> Frame<T> for AxisNormal<T> {
+    type Tangent = [T; 2];
+    /// The third component of `vn n`, which is `v[2]` itself (`sign^2 = 1`).
+    type NormalPart = T;
+    #[inline(always)]
+    fn split(self, v: [T; 3]) -> (T, T, [T; 2]) {
+        (self.sign * v[2], v[2], [v[0], v[1]])
+    }
+    #[inline(always)]
+    fn compose(self, t: [T; 2], a: T, normal_part: T) -> [T; 3] {
+        [t[0], t[1], a * normal_part]
+    }
+    #[inline(always)]
+    fn spin_velocity(self, w: [T; 3]) -> [T; 2] {
+        // (w0, w1, w2) x (0, 0, s) = (s w1, -s w0, 0).
+        [self.sign * w[1], -(self.sign * w[0])]
+    }
+    #[inline(always)]
+    fn spin_kick(self, w: [T; 3], a: T, x: [T; 2]) -> [T; 3] {
+        // (0, 0, s) x (x0, x1, 0) = (-s x1, s x0, 0).
+        [a * -(self.sign * x[1]) + w[0], a * (self.sign * x[0]) + w[1], w[2]]
+    }
+}
+
+/// Resolves one impact. `v`, `w` (rad/s), `radius` (m) and the unit normal `n` (a `[T; 3]`, or
+/// an [`AxisNormal`]) are the state at contact; `w` and `radius` are ignored unless `SPIN`,
+/// friction is skipped unless `FRICTION`.
 /// Called for `vn >= 0` too (the batch kernel discards that result), it still returns finite
 /// values for finite input.
 #[inline(always)]
@@ -91,24 +208,22 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     v: [T; 3],
     w: [T; 3],
     radius: T,
-    n: [T; 3],
+    n: impl Frame<T>,
 ) -> ImpactResult<T> {
-    let vn = dot(v, n);
+    // The normal part `vn n` is shared by `v_t` and the rebound's `Vn n = -e vn n`, so that
+    // after `e` only one multiply and one add remain on the way to the velocity.
+    let (vn, v_n, v_t) = n.split(v);
     let speed = -vn;
     let coefficients = law::coefficients(c, p, q, speed);
     let e = coefficients.overall;
-    // The normal part `vn n`, shared by `v_t` and the rebound's `Vn n = -e vn n`, so that after
-    // `e` only one multiply and one add remain on the way to the velocity.
-    let v_n = [vn * n[0], vn * n[1], vn * n[2]];
-    let v_t = [v[0] - v_n[0], v[1] - v_n[1], v[2] - v_n[2]];
 
     // Pt/m = -ratio s with ratio = min(2/7, mu |vn| / |s| (1 + e)): rolling, or sliding at the
     // friction limit. `mu |vn| / |s|` needs only the slip, so its division runs beside the one
     // in `e` rather than after it (the kernel's speed is set by this dependency chain). Zero
     // slip makes it infinite: rolling with no impulse.
     let (slip_vector, slip, ratio, j, rolling) = if FRICTION {
-        let s = if SPIN { axpy(-radius, cross(w, n), v_t) } else { v_t };
-        let slip = dot(s, s).sqrt();
+        let s = if SPIN { Tangent::axpy(-radius, n.spin_velocity(w), v_t) } else { v_t };
+        let slip = s.dot(s).sqrt();
         let two_sevenths = T::from_f64(2.0 / 7.0);
         let sliding_scale = c.mu * speed.abs();
         let limit = select(slip > T::ZERO, sliding_scale / slip, T::INFINITY) * (T::ONE + e);
@@ -118,18 +233,18 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
         let j = select(rolling, two_sevenths * slip, sliding_scale * (T::ONE + e));
         (s, slip, two_sevenths.min(limit), j, rolling)
     } else {
-        ([T::ZERO; 3], T::ZERO, T::ZERO, T::ZERO, false)
+        (Tangent::zero(), T::ZERO, T::ZERO, T::ZERO, false)
     };
-    let impulse_t = [-ratio * slip_vector[0], -ratio * slip_vector[1], -ratio * slip_vector[2]];
+    let impulse_t = Tangent::axpy(-ratio, slip_vector, Tangent::zero());
 
-    let tangential = if FRICTION { axpy(T::ONE, impulse_t, v_t) } else { v_t };
-    let mut velocity = axpy(-e, v_n, tangential);
-    let mut spin = if SPIN && FRICTION { axpy(T::from_f64(-2.5) / radius, cross(n, impulse_t), w) } else { w };
+    let tangential = if FRICTION { Tangent::add(impulse_t, v_t) } else { v_t };
+    let mut velocity = n.compose(tangential, -e, v_n);
+    let mut spin = if SPIN && FRICTION { n.spin_kick(w, T::from_f64(-2.5) / radius, impulse_t) } else { w };
 
     let deposit = coefficients.captured & (mode == CaptureMode::Deposit);
     let rotational =
         if SPIN { T::from_f64(0.2) * radius * radius * dot(spin, spin) } else { T::from_f64(1.25) * j * j };
-    let deposited_energy = select(deposit, T::HALF * dot(tangential, tangential) + rotational, T::ZERO);
+    let deposited_energy = select(deposit, T::HALF * tangential.dot(tangential) + rotational, T::ZERO);
     for i in 0..3 {
         velocity[i] = select(deposit, T::ZERO, velocity[i]);
         spin[i] = select(deposit, T::ZERO, spin[i]);

