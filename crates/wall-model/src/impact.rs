@@ -214,27 +214,31 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     // after `e` only one multiply and one add remain on the way to the velocity.
     let (vn, v_n, v_t) = n.split(v);
     let speed = -vn;
-    let coefficients = law::coefficients(c, p, q, speed);
-    let e = coefficients.overall;
 
     // Pt/m = -ratio s with ratio = min(2/7, mu |vn| / |s| (1 + e)): rolling, or sliding at the
-    // friction limit. `mu |vn| / |s|` needs only the slip, so its division runs beside the one
-    // in `e` rather than after it (the kernel's speed is set by this dependency chain). Zero
-    // slip makes it infinite: rolling with no impulse.
-    let (slip_vector, slip, ratio, j, rolling) = if FRICTION {
+    // friction limit. `e` and `mu |vn| / |s|` come from one shared division (the loop's speed
+    // is set by its divisions and roots), and `mu |vn| / |s|` needs only the slip, so the
+    // quotient does not wait for `e`. Zero slip makes it infinite: rolling with no impulse.
+    let (coefficients, slip_vector, slip, ratio, j, rolling) = if FRICTION {
         let s = if SPIN { Tangent::axpy(-radius, n.spin_velocity(w), v_t) } else { v_t };
         let slip = s.dot(s).sqrt();
-        let two_sevenths = T::from_f64(2.0 / 7.0);
         let sliding_scale = c.mu * speed.abs();
-        let limit = select(slip > T::ZERO, sliding_scale / slip, T::INFINITY) * (T::ONE + e);
+        let a = law::material_denominator(c, p, speed);
+        let b = law::adhesion_denominator(c, q, speed);
+        let (formula, per_slip) = law::restitution_formula_and_quotient(a, b, sliding_scale, slip);
+        let coefficients = law::coefficients_from(c, speed, a, b, formula);
+        let e = coefficients.overall;
+        let two_sevenths = T::from_f64(2.0 / 7.0);
+        let limit = select(slip > T::ZERO, per_slip, T::INFINITY) * (T::ONE + e);
         let rolling = two_sevenths <= limit;
         // |Pt|/m = min(2/7 |s|, mu (1 + e) |vn|), chosen rather than computed as ratio |s|
         // (NaN for an infinite slip).
         let j = select(rolling, two_sevenths * slip, sliding_scale * (T::ONE + e));
-        (s, slip, two_sevenths.min(limit), j, rolling)
+        (coefficients, s, slip, two_sevenths.min(limit), j, rolling)
     } else {
-        (Tangent::zero(), T::ZERO, T::ZERO, T::ZERO, false)
+        (law::coefficients(c, p, q, speed), Tangent::zero(), T::ZERO, T::ZERO, T::ZERO, false)
     };
+    let e = coefficients.overall;
     let impulse_t = Tangent::axpy(-ratio, slip_vector, Tangent::zero());
 
     let tangential = if FRICTION { Tangent::add(impulse_t, v_t) } else { v_t };
@@ -391,5 +395,25 @@ mod tests {
         let vt = (0.3f64 * 0.3 + 0.1 * 0.1).sqrt();
         let scale = (vt - 0.0025) / vt;
         assert!((keep.velocity[0] - 0.3 * scale).abs() < 1e-15 && (keep.velocity[2] - 0.1 * scale).abs() < 1e-15);
+    }
+
+    #[test]
+    fn slips_beyond_the_quotient_range_get_no_friction_impulse() {
+        // A slip of 1e141 m/s (beyond f64's 1e140) slides with no impulse, as an overflowing
+        // slip always did; rolling there would kick the spin past f64's range.
+        let (v, w, r) = ([1e141, 0.0, -1.0], [0.0, 0.0, 1e9], 1e-9);
+        let res =
+            resolve::<f64, One, Half, true, true>(&law(0.3), One, Half, CaptureMode::Deposit, v, w, r, [0.0, 0.0, 1.0]);
+        assert!(!res.rolling);
+        assert_eq!(res.velocity[0], 1e141);
+        assert_eq!(res.spin, w);
+        // Inside the range the same impact slides with the friction limit's impulse
+        // j = mu (1 + e) |vn| along -x, which kicks the spin by W_y = 5 j / (2 r).
+        let v = [1e139, 0.0, -1.0];
+        let res =
+            resolve::<f64, One, Half, true, true>(&law(0.3), One, Half, CaptureMode::Deposit, v, w, r, [0.0, 0.0, 1.0]);
+        let j = 0.3 * (1.0 + res.coefficients.overall);
+        assert!(!res.rolling && (res.tangential_impulse - j).abs() < 1e-15);
+        assert!((res.spin[1] - 2.5 * j / r).abs() < 1e-12 * res.spin[1], "{:?}", res.spin);
     }
 }
