@@ -11,7 +11,7 @@
 //! function the scalar API uses, so batch and scalar results agree bit for bit (on an axis
 //! wall, up to the sign of zeros, with energies summed in the rotated order). No FMA contraction or
 //! fast-math is enabled, so the three instruction sets give identical results too by
-//! construction (the tests run whichever build the machine selects: AVX2 on ours).
+//! construction (the tests run whichever build the machine selects).
 //!
 //! Above [`PARALLEL_MIN`] particles the batch is halved recursively down to [`LEAF`]-sized
 //! pieces run by rayon on the current thread pool. The halving and the order in which tallies

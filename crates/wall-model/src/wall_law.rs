@@ -123,7 +123,9 @@ impl WallLaw {
     /// One impact in 3-D: velocity `v` (m/s) against a wall with unit normal `normal` (into the
     /// fluid), with spin `(w, radius)` (rad/s, m) when the scene tracks it. The same code as the
     /// batch kernel. For `vn >= 0` the result is meaningless (not an impact): check
-    /// `normal_velocity < 0` first, as the batch kernel does.
+    /// `normal_velocity < 0` first, as the batch kernel does. With friction (`mu > 0`) the
+    /// impact forms `e` in one division with the friction quotient, so its `e` can differ from
+    /// [`WallLaw::coefficients`]' by a few units in the last place.
     #[must_use]
     pub fn impact(&self, v: DVec3, spin: Option<(DVec3, f64)>, normal: DVec3) -> ImpactResult<f64> {
         let c = &self.constants;
