@@ -243,9 +243,10 @@ impl<T: Real> Workload<T> {
 
 /// One piece of the copy kernel: negates every velocity and spin component, scales one spin
 /// component by the radius (so the radius is read) and writes the outcome byte. Compiled for
-/// the same instruction sets as the law kernel, with every slice cut to one length so that
-/// the loop has no bounds checks and vectorises: the ceiling must be the fastest way to move
-/// these bytes, or a law kernel could time above it.
+/// the same instruction sets as the law kernel (a baseline-only build, 128-bit vectors, timed
+/// below the law kernel's AVX-512 build), with every slice cut to one length so that the loop
+/// needs no bounds checks: the ceiling must be the fastest way to move these bytes, or a law
+/// kernel could time above it.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx512dq+avx512bw", "x86_64+avx2+fma"))]
 fn copy_piece<T: Real>(v: [&mut [T]; 3], spin: Option<([&mut [T]; 3], &[T])>, outcome: &mut [u8]) {
     let n = outcome.len();
