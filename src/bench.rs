@@ -416,3 +416,36 @@ pub fn error_against_reference(scenario: Scenario, n: usize) -> f64 {
     }
     worst
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The ceiling means something only if the copy kernel reads and writes every element of
+    /// every array the law kernel touches, across piece boundaries and in both precisions.
+    fn copy_kernel_touches_everything<T: Real>(spin: bool) {
+        let n = 3 * LEAF + 17;
+        let pristine = Workload::<T>::random(n, spin, 5);
+        let mut work = Workload::<T>::random(n, spin, 5);
+        work.copy_kernel();
+        for k in 0..3 {
+            assert!(work.v[k].iter().zip(&pristine.v[k]).all(|(&x, &x0)| x == -x0), "velocity {k}");
+        }
+        if spin {
+            let scaled = work.w[0].iter().zip(&pristine.w[0]).zip(&pristine.radius);
+            assert!(scaled.into_iter().all(|((&x, &x0), &r)| x == x0 * r), "spin 0 scaled by the radius");
+            for k in 1..3 {
+                assert!(work.w[k].iter().zip(&pristine.w[k]).all(|(&x, &x0)| x == -x0), "spin {k}");
+            }
+        }
+        assert!(bytemuck::cast_slice::<Outcome, u8>(&work.outcome).iter().all(|&o| o == 1));
+    }
+
+    #[test]
+    fn the_copy_kernel_reads_and_writes_every_element() {
+        for spin in [false, true] {
+            copy_kernel_touches_everything::<f64>(spin);
+            copy_kernel_touches_everything::<f32>(spin);
+        }
+    }
+}
