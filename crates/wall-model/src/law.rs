@@ -136,7 +136,7 @@ pub fn restitution_formula<T: Real, P: Power<T>, Q: Power<T>>(c: &LawConstants<T
 /// ```
 ///
 /// The impact uses it for `mu |vn| / |s|` (`y = mu |vn|`, `x` the slip speed `|s|`): division
-/// and square root share one slow unit, and this saves a third of the friction loop's use of it.
+/// and square root share one slow unit, and this saves one of the friction loop's two divisions.
 /// The clamps keep `D` finite and normal whatever the inputs:
 ///
 /// - `B' = B` clamped to `[1, T::UNIT_LOST]`. Below 1 the impact is captured and `e` is not
