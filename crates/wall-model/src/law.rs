@@ -122,8 +122,12 @@ pub fn adhesion<T: Real, Q: Power<T>>(c: &LawConstants<T>, q: Q, speed: T) -> T 
 #[inline(always)]
 #[must_use]
 pub fn restitution_formula<T: Real, P: Power<T>, Q: Power<T>>(c: &LawConstants<T>, p: P, q: Q, speed: T) -> T {
-    let a = material_denominator(c, p, speed);
-    let b = adhesion_denominator(c, q, speed);
+    formula_from_denominators(material_denominator(c, p, speed), adhesion_denominator(c, q, speed))
+}
+
+/// Eq. (2) from the denominators: `e = R (1 - rho) = (B - 1) / (A B)`.
+#[inline(always)]
+fn formula_from_denominators<T: Real>(a: T, b: T) -> T {
     (b - T::ONE) / (a * b)
 }
 
@@ -178,7 +182,7 @@ pub fn is_captured<T: Real>(c: &LawConstants<T>, speed: T, adhesion_denominator:
 pub fn coefficients<T: Real, P: Power<T>, Q: Power<T>>(c: &LawConstants<T>, p: P, q: Q, speed: T) -> Coefficients<T> {
     let a = material_denominator(c, p, speed);
     let b = adhesion_denominator(c, q, speed);
-    coefficients_from(c, speed, a, b, (b - T::ONE) / (a * b))
+    coefficients_from(c, speed, a, b, formula_from_denominators(a, b))
 }
 
 /// The coefficients from the denominators `A` (Eq. 8) and `B` (Eq. 9) at normal speed
@@ -349,11 +353,11 @@ mod tests {
         assert!(is_captured(&c, 0.5, 0.0));
     }
 
-    /// `restitution_formula_and_quotient` against the two divisions it replaces, relative to
-    /// the larger of the two results and `tiny`, in units of `T`'s epsilon.
+    /// The relative errors of `restitution_formula_and_quotient`'s `e` and quotient against the
+    /// two divisions it replaces (the quotient's reference with the documented clamping of `x`).
     fn shared_division_error<T: Real>(a: T, b: T, y: T, x: T) -> (f64, f64) {
         let (e, quotient) = restitution_formula_and_quotient(a, b, y, x);
-        let e_direct = ((b - T::ONE) / (a * b)).to_f64();
+        let e_direct = formula_from_denominators(a, b).to_f64();
         let q_direct = if x > T::QUOTIENT_RANGE.1 { 0.0 } else { (y / x.max(T::QUOTIENT_RANGE.0)).to_f64() };
         let relative = |got: T, want: f64| (got.to_f64() - want).abs() / want.abs().max(f64::MIN_POSITIVE);
         (relative(e, e_direct), relative(quotient, q_direct))
@@ -389,7 +393,7 @@ mod tests {
                     for &x in extremes.iter().filter(|&&x| x >= T::ZERO) {
                         for &y in &[T::ZERO, T::ONE, T::from_f64(1e9)] {
                             let (e, quotient) = restitution_formula_and_quotient(a, b, y, x);
-                            let direct = (b - T::ONE) / (a * b);
+                            let direct = formula_from_denominators(a, b);
                             assert!(e.is_finite() && e >= T::ZERO && e <= T::ONE, "a {a:?} b {b:?} x {x:?}: e {e:?}");
                             // x only scales the shared divisor: e must not depend on it at all.
                             let relative = (e.to_f64() - direct.to_f64()).abs() / direct.to_f64();
