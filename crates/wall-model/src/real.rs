@@ -134,8 +134,8 @@ const ATANH_F64: [f64; 7] = [
 ];
 /// As [`ATANH_F64`], 4 terms for `f32`: relative error 2.7e-9.
 const ATANH_F32: [f64; 4] = [1.0, 0.3333334251978793, 0.1999439028301099, 0.14789974695986394];
-/// `e^g` for `|g| <= ln(2)/2`: relative error 3.7e-14 (Taylor needs 12 terms for 7e-15, 11
-/// for 9e-14).
+/// `e^g` for `|g| <= ln(2)/2`: relative error 3.7e-14 (the Taylor series gives 6e-15
+/// with 12 terms, 2e-13 with 11).
 const EXP_F64: [f64; 10] = [
     1.0,
     1.0,
