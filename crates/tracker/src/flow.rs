@@ -47,6 +47,8 @@
 //! The crossing-trajectories effect (inertial particles leaving their fluid eddies early) is
 //! not modelled: a particle sees the fluid-element time scale `T_L` whatever its inertia.
 
+use std::sync::Arc;
+
 /// von Karman's constant of Reichardt's profile.
 const KARMAN: f64 = 0.41;
 /// Wall units in which the room's wall-normal profile reaches its peak.
@@ -168,7 +170,8 @@ pub(crate) struct Table {
     split: f64,
     inv_fine: f64,
     inv_coarse: f64,
-    nodes: Box<[Node; NODES]>,
+    /// Shared by clones: components with the same profile read the same nodes.
+    nodes: Arc<[Node; NODES]>,
 }
 
 /// Nodes of a table: the fine grid's `TABLE_CELLS + 1` and the coarse grid's `TABLE_CELLS`.
@@ -207,7 +210,7 @@ impl Table {
         for node in &mut nodes {
             node.drift *= node.slope;
         }
-        let nodes = nodes.into_boxed_slice().try_into().expect("NODES nodes");
+        let nodes = Arc::<[Node]>::from(nodes).try_into().expect("NODES nodes");
         Self { split, inv_fine: 1.0 / fine, inv_coarse: 1.0 / coarse, nodes }
     }
 
@@ -290,10 +293,17 @@ impl FlowField {
                         (sigma_peak + f * (core_rms - sigma_peak), t_peak + f * (core_time - t_peak))
                     }
                 };
-                let y_max = half.iter().copied().fold(0.0, f64::max);
+                // The table ends at least two coarse cells past the core's start (a coarse cell
+                // is at most `y_end / TABLE_CELLS`, as the fine grid ends below `y_end / 2`), so
+                // its last cell is flat (no drift) and the clamp beyond it gives the core.
+                // Particles in the core all read that one cell, and the near-wall layer's nodes
+                // are dense: the table stays in cache. One table serves all three components.
                 let split = FINE_Y_PLUS / plus;
-                let comp =
-                    |axis| Component { table: Table::new(y_max, split, dt, profile), axis, drift: drift_correction };
+                let core = y_peak + blend_length;
+                let y_max = half.iter().copied().fold(0.0, f64::max);
+                let y_end = (core * (1.0 + 4.0 / TABLE_CELLS as f64)).min(y_max);
+                let table = Table::new(y_end, split, dt, profile);
+                let comp = |axis| Component { table: table.clone(), axis, drift: drift_correction };
                 field.turbulence = Some([comp(0), comp(1), comp(2)]);
             }
         }
@@ -346,5 +356,17 @@ mod tests {
         assert!((below - above).abs() < 1e-4, "{below} {above}");
         assert!((comp.table.at(1.5).sigma - 0.05).abs() < 1e-9);
         assert!(comp.table.at(1e-4).sigma < 1e-4);
+        // The table ends soon after the core starts (0.1 + 0.25 m here), and from just past
+        // the core's start to the room's centre it gives the core: no drift, the core's time.
+        let core = y_peak + 0.25;
+        for y in [core * (1.0 + 2e-3), 0.5, 1.5, 2.0, 1e9] {
+            let node = comp.table.at(y);
+            assert!((node.sigma - 0.05).abs() < 1e-12, "{y}: {}", node.sigma);
+            assert!(node.drift.abs() < 1e-15, "{y}: {}", node.drift);
+            assert!((node.decay - (-0.1f64 / 2.0).exp()).abs() < 1e-12, "{y}: {}", node.decay);
+        }
+        // All three components read one table.
+        let [a, b, c] = field.turbulence.as_ref().unwrap();
+        assert!(Arc::ptr_eq(&a.table.nodes, &b.table.nodes) && Arc::ptr_eq(&b.table.nodes, &c.table.nodes));
     }
 }
