@@ -156,8 +156,6 @@ pub(crate) struct Normals {
     lanes: Xoshiro4,
     /// The stream that finishes the attempts outside their layer's core.
     finish: Xoshiro256PlusPlus,
-    /// The bits of each slot's first attempt in the block being made.
-    raw: [u64; MAX_BLOCK],
 }
 
 impl Normals {
@@ -165,7 +163,7 @@ impl Normals {
     pub(crate) fn from_rng(seeder: &mut Xoshiro256PlusPlus) -> Self {
         let lanes = Xoshiro4::from_rng(seeder);
         let finish = Xoshiro256PlusPlus::seed_from_u64(seeder.next_u64());
-        Self { lanes, finish, raw: [0; MAX_BLOCK] }
+        Self { lanes, finish }
     }
 
     /// Fills `out` with independent standard normal variates. Its length must be a multiple
@@ -173,32 +171,30 @@ impl Normals {
     pub(crate) fn fill(&mut self, out: &mut [f64]) {
         assert!(out.len() % LANES == 0 && out.len() <= MAX_BLOCK, "block of {} variates", out.len());
         let z = &*ZIGGURAT;
-        let raw = &mut self.raw[..out.len()];
-        let rejected = first_attempts(&mut self.lanes, z, out, raw);
+        let rejected = first_attempts(&mut self.lanes, z, out);
         for (lane, mut chunks) in rejected.into_iter().enumerate() {
             while chunks != 0 {
                 let slot = chunks.trailing_zeros() as usize * LANES + lane;
-                out[slot] = finish(&mut self.finish, z, raw[slot]);
+                out[slot] = finish(&mut self.finish, z, out[slot].to_bits());
                 chunks &= chunks - 1;
             }
         }
     }
 }
 
-/// The first attempt for every slot of `out`, with its bits kept in `raw`: accepted values are
-/// stored, the others as NaN. Returns, per lane, a bit for each chunk of four slots whose
-/// attempt in that lane was not accepted. Branch-free, so it vectorises (compiled for AVX2 as
-/// well, chosen at run time).
+/// The first attempt for every slot of `out`: accepted values are stored as they are, the
+/// others as their attempt's 64 bits (read back with `to_bits` to finish them). Returns, per
+/// lane, a bit for each chunk of four slots whose attempt in that lane was not accepted.
+/// Branch-free, so it vectorises (compiled for AVX2 as well, chosen at run time).
 #[multiversion(targets("x86_64+avx2+fma"))]
-fn first_attempts(lanes: &mut Xoshiro4, z: &Ziggurat, out: &mut [f64], raw: &mut [u64]) -> [u64; LANES] {
+fn first_attempts(lanes: &mut Xoshiro4, z: &Ziggurat, out: &mut [f64]) -> [u64; LANES] {
     let mut rejected = [0u64; LANES];
     let rotation = Rotation::opaque();
-    for (c, (chunk, raw)) in out.chunks_exact_mut(LANES).zip(raw.chunks_exact_mut(LANES)).enumerate() {
+    for (c, chunk) in out.chunks_exact_mut(LANES).enumerate() {
         let bits = lanes.next(rotation);
         for l in 0..LANES {
             let (_, x, core) = attempt(z, bits[l]);
-            chunk[l] = if core { x } else { f64::NAN };
-            raw[l] = bits[l];
+            chunk[l] = if core { x } else { f64::from_bits(bits[l]) };
             rejected[l] |= u64::from(!core) << c;
         }
     }
