@@ -465,14 +465,17 @@ impl StepNormals {
         Self { normals, block: [0.0; 9 * STEPS_PER_BLOCK] }
     }
 
-    /// The `per_step` variates of step `n` (steps taken in order from 0, the same `per_step`
-    /// each time: a constant of the caller, which the compiler folds into the indexing).
+    /// The variates of step `n`, its `per_step` ones first (steps taken in order from 0, the
+    /// same `per_step` each time: a constant of the caller, which the compiler folds into the
+    /// indexing). The view is always nine long, so that constant indices need no bounds
+    /// check; past `per_step` it shows later steps' variates, or stale ones.
     #[inline(always)]
-    fn step(&mut self, n: usize, per_step: usize) -> &[f64] {
+    fn step(&mut self, n: usize, per_step: usize) -> &[f64; 9] {
         if n % STEPS_PER_BLOCK == 0 && per_step > 0 {
             self.normals.fill(&mut self.block[..per_step * STEPS_PER_BLOCK]);
         }
-        &self.block[(n % STEPS_PER_BLOCK) * per_step..][..per_step]
+        let at = (n % STEPS_PER_BLOCK) * per_step;
+        self.block[at..at + 9].try_into().expect("nine variates within the block")
     }
 }
 
@@ -578,13 +581,12 @@ fn run_lanes<const BROWN: bool, const TURB: bool>(
             }
         }
 
-        // This step's normal variates, lane by lane.
-        let mut z = [[0.0; WIDTH]; 9];
-        for (l, lane) in lanes.iter_mut().enumerate() {
+        // This step's normal variates, read where each lane's block holds them (copying them
+        // into one array first cost more than the reads it saved).
+        let mut z: [&[f64; 9]; WIDTH] = [&[0.0; 9]; WIDTH];
+        for ((z, lane), &n) in z.iter_mut().zip(&mut lanes).zip(&n) {
             if let Some(lane) = lane {
-                for (k, &zk) in lane.draws.step(n[l], per_step).iter().enumerate() {
-                    z[k][l] = zk;
-                }
+                *z = lane.draws.step(n, per_step);
             }
         }
 
@@ -600,7 +602,7 @@ fn run_lanes<const BROWN: bool, const TURB: bool>(
         if let Some(turb) = field.turbulence.as_ref().filter(|_| TURB) {
             for (a, comp) in turb.iter().enumerate() {
                 for l in 0..WIDTH {
-                    let (du, next) = fluctuation(comp, x[comp.axis][l], p.size[comp.axis], zeta[a][l], z[a][l]);
+                    let (du, next) = fluctuation(comp, x[comp.axis][l], p.size[comp.axis], zeta[a][l], z[l][a]);
                     uf[a][l] += du;
                     zeta[a][l] = next;
                 }
@@ -611,7 +613,7 @@ fn run_lanes<const BROWN: bool, const TURB: bool>(
         for a in 0..3 {
             for l in 0..WIDTH {
                 if BROWN {
-                    let (za, zb) = (z[brownian_start + 2 * a][l], z[brownian_start + 2 * a + 1][l]);
+                    let (za, zb) = (z[l][brownian_start + 2 * a], z[l][brownian_start + 2 * a + 1]);
                     let coefficients = [brownian[0][l], brownian[1][l], brownian[2][l]];
                     (bx[a][l], bv[a][l]) = brownian_increment(coefficients, za, zb);
                 }
