@@ -294,7 +294,7 @@ impl FlowField {
                     }
                 };
                 // The table ends at least two coarse cells past the core's start (a coarse cell
-                // is at most `y_end / TABLE_CELLS`, as the fine grid ends below `y_end / 2`), so
+                // is at most `y_end / TABLE_CELLS`, and `y_end - core = 4 core / TABLE_CELLS`), so
                 // its last cell is flat (no drift) and the clamp beyond it gives the core.
                 // Particles in the core all read that one cell, and the near-wall layer's nodes
                 // are dense: the table stays in cache. One table serves all three components.
