@@ -627,12 +627,7 @@ fn run_lanes<const BROWN: bool, const TURB: bool>(
         // ends inside its free box (no contact, nothing to wrap), with a finite velocity, before
         // the particle's last step. It is what the general path below does in that case.
         if !vacant {
-            let mut plain = true;
-            for a in 0..3 {
-                for l in 0..WIDTH {
-                    plain &= (x1[a][l] >= lo[a][l]) & (x1[a][l] <= hi[a][l]) & v1[a][l].is_finite();
-                }
-            }
+            let mut plain = ends_free(&x1, &v1, &lo, &hi);
             for &n in &n {
                 plain &= n + 1 < p.steps;
             }
@@ -744,15 +739,13 @@ fn fly_freely(x: &mut [[f64; WIDTH]; 3], v: &mut [[f64; WIDTH]; 3], c: FreeLanes
     let mut taken = 0;
     while taken < limit {
         let (mut x1, mut v1) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
-        let mut quiet = true;
         for a in 0..3 {
             for l in 0..WIDTH {
                 (x1[a][l], v1[a][l]) =
                     relaxed(xs[a][l], vs[a][l], c.v_inf[a][l], (c.dt, c.decay[l], c.relax[l]), 0.0, 0.0);
-                quiet &= (x1[a][l] >= c.lo[a][l]) & (x1[a][l] <= c.hi[a][l]) & v1[a][l].is_finite();
             }
         }
-        if !quiet {
+        if !ends_free(&x1, &v1, &c.lo, &c.hi) {
             break;
         }
         (xs, vs) = (x1, v1);
@@ -760,6 +753,19 @@ fn fly_freely(x: &mut [[f64; WIDTH]; 3], v: &mut [[f64; WIDTH]; 3], c: FreeLanes
     }
     (*x, *v) = (xs, vs);
     taken
+}
+
+/// True when every lane's step ends inside its box `[lo, hi]` ([`free_bounds`]: no contact,
+/// nothing to wrap) with a finite velocity.
+#[inline(always)]
+fn ends_free(x1: &[[f64; WIDTH]; 3], v1: &[[f64; WIDTH]; 3], lo: &[[f64; WIDTH]; 3], hi: &[[f64; WIDTH]; 3]) -> bool {
+    let mut free = true;
+    for a in 0..3 {
+        for l in 0..WIDTH {
+            free &= (x1[a][l] >= lo[a][l]) & (x1[a][l] <= hi[a][l]) & v1[a][l].is_finite();
+        }
+    }
+    free
 }
 
 /// The mean flow plus the fluctuation `sigma zeta` at `x`.
