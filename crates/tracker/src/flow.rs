@@ -221,15 +221,32 @@ impl Table {
         // Both grids' coordinates, then a choice, rather than a branch.
         let (fine, coarse) = (y * self.inv_fine, TABLE_CELLS as f64 + (y - self.split) * self.inv_coarse);
         let s = if y < self.split { fine } else { coarse };
-        // `s >= 0`, so the index fits an i32 (a cheaper conversion than to usize); clamping
-        // against the constant table length lets the compiler drop the bounds checks.
-        let i = ((s.min((NODES - 2) as f64)) as i32 as usize).min(NODES - 2);
-        let f = (s - i as f64).min(1.0);
+        // `s >= 0`; clamping the index against the constant table length lets the compiler
+        // drop the bounds checks.
+        let (cell, i) = cell_of(s.min((NODES - 2) as f64));
+        let i = i.min(NODES - 2);
+        let f = (s - cell).min(1.0);
         // sigma is interpolated (the fluid velocity seen is continuous in y); the time-scale
         // factors and the slope are the cell's own (T_L changes little across a cell).
         let a = self.nodes[i];
         Node { sigma: a.sigma + f * a.rise, ..a }
     }
+}
+
+/// The cell holding the table coordinate `s` (`0 <= s < 2^31`): `floor(s)`, as a float and as
+/// an index.
+///
+/// Adding `2^52` rounds `s` to the nearest integer and leaves it in the low bits of the sum's
+/// mantissa; one comparison turns the rounding into a floor. All of it is vector arithmetic
+/// across the lanes of the tracker's step, where `s as i32` became a scalar conversion with a
+/// branch for NaN in each lane, three times a step.
+#[inline(always)]
+fn cell_of(s: f64) -> (f64, usize) {
+    const SHIFT: f64 = 4_503_599_627_370_496.0; // 2^52
+    let nearest = (s + SHIFT) - SHIFT;
+    let cell = if nearest > s { nearest - 1.0 } else { nearest };
+    // The low 32 bits hold `cell` exactly (an integer below 2^31).
+    (cell, (cell + SHIFT).to_bits() as u32 as usize)
 }
 
 /// One fluctuating component: its profile, the axis whose walls it is measured from, and
@@ -329,6 +346,15 @@ mod tests {
         assert!((wall_normal_rms(ROOM_PEAK_Y_PLUS) - 1.011).abs() < 1e-3);
         assert_eq!(lagrangian_time(1.0), 10.0);
         assert_eq!(lagrangian_time(500.0), lagrangian_time(200.0));
+    }
+
+    #[test]
+    fn cell_of_is_the_floor() {
+        let below = |x: f64| f64::from_bits(x.to_bits() - 1);
+        for s in [0.0, 0.25, 0.5, 1.0, 1.5, 2.5, below(3.0), 3.0, 4095.5, below(8191.0), (NODES - 2) as f64] {
+            let (cell, i) = cell_of(s);
+            assert_eq!((cell, i), (s.floor(), s.floor() as usize), "{s}");
+        }
     }
 
     #[test]
