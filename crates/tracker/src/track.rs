@@ -1070,8 +1070,8 @@ mod tests {
     #[test]
     fn lanes_give_each_particle_what_it_gets_alone() {
         // A small turbulent room whose walls rebound particles by the law (5 um particles
-        // over 10 s: about a third settle to the floor, bouncing there, whatever the random
-        // numbers), and a turbulent channel (periodic along and across) whose walls absorb
+        // over 10 s: settling alone brings a quarter of them to the floor, where they bounce,
+        // so the test does not depend on lucky random numbers), and a turbulent channel (periodic along and across) whose walls absorb
         // them. 37 particles, so that the lanes refill unevenly (as particles deposit) and the
         // last ones run part-empty.
         let law = WallLaw::preset("dunn1995-stainless").unwrap();
