@@ -161,7 +161,8 @@ pub(crate) struct Node {
     /// `sqrt(1 - decay^2)`.
     pub noise: f64,
     /// The well-mixed drift added to the normalised fluctuation `zeta` over a step,
-    /// `T_L (1 - decay) d sigma / dy` (dimensionless), for a step away from the wall.
+    /// `T_L (1 - decay) d sigma / dy` (dimensionless), for a step away from the wall; zero in
+    /// a table made without drift.
     pub drift: f64,
 }
 
@@ -184,8 +185,10 @@ const NODES: usize = 2 * TABLE_CELLS + 1;
 
 impl Table {
     /// Tabulates `sigma(y)` and `T_L(y)` on `[0, y_max]` for time step `dt`, finely up to
-    /// `y_split` (clamped into `(0, y_max)`).
-    fn new(y_max: f64, y_split: f64, dt: f64, f: impl Fn(f64) -> (f64, f64)) -> Self {
+    /// `y_split` (clamped into `(0, y_max)`), with the well-mixed drift when `drift` (zero
+    /// otherwise: a component without it then adds zero in the same arithmetic, and the
+    /// step needs no per-component switch).
+    fn new(y_max: f64, y_split: f64, dt: f64, drift: bool, f: impl Fn(f64) -> (f64, f64)) -> Self {
         let split = y_split.clamp(1e-3 * y_max, 0.5 * y_max);
         let (fine, coarse) = (split / TABLE_CELLS as f64, (y_max - split) / TABLE_CELLS as f64);
         let ys: Vec<f64> = (0..=TABLE_CELLS)
@@ -213,7 +216,7 @@ impl Table {
             nodes[i].slope = nodes[i].rise / (ys[i + 1] - ys[i]);
         }
         for node in &mut nodes {
-            node.drift *= node.slope;
+            node.drift = if drift { node.drift * node.slope } else { 0.0 };
         }
         let nodes = Arc::<[Node]>::from(nodes).try_into().expect("NODES nodes");
         Self { split, inv_fine: 1.0 / fine, inv_coarse: 1.0 / coarse, nodes }
@@ -254,13 +257,13 @@ fn cell_of(s: f64) -> (f64, usize) {
     (cell, (cell + SHIFT).to_bits() as u32 as usize)
 }
 
-/// One fluctuating component: its profile, the axis whose walls it is measured from, and
-/// whether it carries the well-mixed drift (the wall-normal one).
+/// One fluctuating component: its profile (with the well-mixed drift in its nodes when the
+/// component carries one: in a channel the wall-normal one, in a room all three) and the axis
+/// whose walls it is measured from.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Component {
     pub table: Table,
     pub axis: usize,
-    pub drift: bool,
 }
 
 /// A scene's flow prepared for a time step: mean flow and turbulence as tables.
@@ -285,18 +288,20 @@ impl FlowField {
             Flow::Uniform { velocity } => field.uniform = velocity,
             Flow::Poiseuille { max_speed } => {
                 let h = size[2];
-                field.profile =
-                    Some(Table::new(half[2], 0.25 * half[2], dt, |y| (4.0 * max_speed * y * (h - y) / (h * h), 0.0)));
+                field.profile = Some(Table::new(half[2], 0.25 * half[2], dt, false, |y| {
+                    (4.0 * max_speed * y * (h - y) / (h * h), 0.0)
+                }));
             }
             Flow::TurbulentChannel { friction_velocity: us } => {
                 let plus = us / nu;
                 let time = nu / (us * us);
                 let split = FINE_Y_PLUS / plus;
-                field.profile = Some(Table::new(half[2], split, dt, |y| (us * reichardt(y * plus), 0.0)));
+                field.profile = Some(Table::new(half[2], split, dt, false, |y| (us * reichardt(y * plus), 0.0)));
                 let comp = |rms: fn(f64) -> f64, drift: bool| Component {
-                    table: Table::new(half[2], split, dt, |y| (us * rms(y * plus), time * lagrangian_time(y * plus))),
+                    table: Table::new(half[2], split, dt, drift && drift_correction, |y| {
+                        (us * rms(y * plus), time * lagrangian_time(y * plus))
+                    }),
                     axis: 2,
-                    drift: drift && drift_correction,
                 };
                 field.turbulence =
                     Some([comp(streamwise_rms, false), comp(spanwise_rms, false), comp(wall_normal_rms, true)]);
@@ -324,8 +329,8 @@ impl FlowField {
                 let core = y_peak + blend_length;
                 let y_max = half.iter().copied().fold(0.0, f64::max);
                 let y_end = (core * (1.0 + 4.0 / TABLE_CELLS as f64)).min(y_max);
-                let table = Table::new(y_end, split, dt, profile);
-                let comp = |axis| Component { table: table.clone(), axis, drift: drift_correction };
+                let table = Table::new(y_end, split, dt, drift_correction, profile);
+                let comp = |axis| Component { table: table.clone(), axis };
                 field.turbulence = Some([comp(0), comp(1), comp(2)]);
             }
         }
@@ -364,7 +369,7 @@ mod tests {
 
     #[test]
     fn table_interpolates_within_a_cell_and_clamps_outside() {
-        let t = Table::new(1.0, 0.25, 0.1, |y| (y * y, 1.0));
+        let t = Table::new(1.0, 0.25, 0.1, true, |y| (y * y, 1.0));
         for y in [0.0, 1e-6, 0.01, 0.3, 0.999] {
             assert!((t.at(y).sigma - y * y).abs() < 1e-5, "{y}");
             assert!((t.at(y).slope - 2.0 * y).abs() < 2e-3, "{y}: {}", t.at(y).slope);
@@ -396,6 +401,21 @@ mod tests {
                 assert!(error < 1e-4, "y+ {}: {error}", d * plus);
             }
         }
+    }
+
+    #[test]
+    fn only_the_wall_normal_channel_component_carries_the_drift() {
+        let flow = Flow::TurbulentChannel { friction_velocity: 0.3 };
+        let drifts = |correction: bool| {
+            let field = FlowField::new(&flow, [0.1, 0.1, 0.01], 1.5e-5, 1e-4, correction);
+            // y+ = 10, in the buffer layer where the rms profiles rise steeply.
+            field.turbulence.unwrap().map(|c| c.table.at(10.0 * 1.5e-5 / 0.3).drift)
+        };
+        let [x, y, z] = drifts(true);
+        assert!(x == 0.0 && y == 0.0 && z > 1e-3, "{x} {y} {z}");
+        assert_eq!(drifts(false), [0.0; 3]);
+        let room = FlowField::new(&Flow::indoor_room(), [4.0, 3.0, 2.5], 1.5e-5, 0.01, true);
+        assert!(room.turbulence.unwrap().iter().all(|c| c.table.at(0.01).drift > 0.0));
     }
 
     #[test]

@@ -835,8 +835,7 @@ fn fluid_velocity_and_fluctuation(
 fn fluctuation(comp: &Component, c: f64, length: f64, zeta: f64, normal: f64) -> (f64, f64) {
     let (d, sign) = wall_distance(c, length);
     let node = comp.table.at(d);
-    let drift = if comp.drift { sign * node.drift } else { 0.0 };
-    (node.sigma * zeta, zeta * node.decay + drift + node.noise * normal)
+    (node.sigma * zeta, zeta * node.decay + sign * node.drift + node.noise * normal)
 }
 
 /// The trajectory of one (part of a) step.
