@@ -582,7 +582,7 @@ fn run_lanes<const BROWN: bool, const TURB: bool>(
                     v_inf[a][l] = field.uniform[a] + settling[a][l];
                 }
             }
-            let taken = fly_freely(&mut x, &mut v, FreeLanes { v_inf, decay, relax, lo, hi, dt }, left);
+            let taken = fly_freely::<AVX2>(&mut x, &mut v, FreeLanes { v_inf, decay, relax, lo, hi, dt }, left);
             for n in &mut n {
                 *n += taken;
             }
@@ -639,7 +639,7 @@ fn run_lanes<const BROWN: bool, const TURB: bool>(
         // ends inside its free box (no contact, nothing to wrap), with a finite velocity, before
         // the particle's last step. It is what the general path below does in that case.
         if !vacant {
-            let mut plain = ends_free(&x1, &v1, &lo, &hi);
+            let mut plain = ends_free::<AVX2>(&x1, &v1, &lo, &hi);
             for &n in &n {
                 plain &= n + 1 < p.steps;
             }
@@ -744,9 +744,16 @@ fn free_bounds(p: &Prepared<'_>, axis: usize, r: f64) -> (f64, f64) {
 /// its [`FreeLanes`] box or not finite; returns the steps taken. Each step is [`relaxed`], as
 /// in [`run_particle`], so the lanes end bit for bit where the general step would take them;
 /// the loop keeps the lanes in registers and does nothing else (the drag-and-gravity bench
-/// scene on 2 cores: 188 million particle-steps/s one particle at a time, 375 million here).
+/// scene on 2 cores: 188 million particle-steps/s one particle at a time, 375 million here;
+/// on one thread the AVX2 [`ends_free`] made it 1.6 times as fast again, median of six
+/// alternating runs).
 #[inline(always)]
-fn fly_freely(x: &mut [[f64; WIDTH]; 3], v: &mut [[f64; WIDTH]; 3], c: FreeLanes, limit: usize) -> usize {
+fn fly_freely<const AVX2: bool>(
+    x: &mut [[f64; WIDTH]; 3],
+    v: &mut [[f64; WIDTH]; 3],
+    c: FreeLanes,
+    limit: usize,
+) -> usize {
     let (mut xs, mut vs) = (*x, *v);
     let mut taken = 0;
     while taken < limit {
@@ -757,7 +764,7 @@ fn fly_freely(x: &mut [[f64; WIDTH]; 3], v: &mut [[f64; WIDTH]; 3], c: FreeLanes
                     relaxed(xs[a][l], vs[a][l], c.v_inf[a][l], (c.dt, c.decay[l], c.relax[l]), 0.0, 0.0);
             }
         }
-        if !ends_free(&x1, &v1, &c.lo, &c.hi) {
+        if !ends_free::<AVX2>(&x1, &v1, &c.lo, &c.hi) {
             break;
         }
         (xs, vs) = (x1, v1);
@@ -768,9 +775,21 @@ fn fly_freely(x: &mut [[f64; WIDTH]; 3], v: &mut [[f64; WIDTH]; 3], c: FreeLanes
 }
 
 /// True when every lane's step ends inside its box `[lo, hi]` ([`free_bounds`]: no contact,
-/// nothing to wrap) with a finite velocity.
+/// nothing to wrap) with a finite velocity. With `AVX2` (set only where the processor has
+/// it) the twelve tests are ANDed as vector masks and read with one `movmsk`; the compiler
+/// made about 45 instructions of packing out of the plain version.
 #[inline(always)]
-fn ends_free(x1: &[[f64; WIDTH]; 3], v1: &[[f64; WIDTH]; 3], lo: &[[f64; WIDTH]; 3], hi: &[[f64; WIDTH]; 3]) -> bool {
+fn ends_free<const AVX2: bool>(
+    x1: &[[f64; WIDTH]; 3],
+    v1: &[[f64; WIDTH]; 3],
+    lo: &[[f64; WIDTH]; 3],
+    hi: &[[f64; WIDTH]; 3],
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if AVX2 {
+        // SAFETY: the caller sets `AVX2` only where the processor has AVX2.
+        return unsafe { ends_free_avx2(x1, v1, lo, hi) };
+    }
     let mut free = true;
     for a in 0..3 {
         for l in 0..WIDTH {
@@ -778,6 +797,32 @@ fn ends_free(x1: &[[f64; WIDTH]; 3], v1: &[[f64; WIDTH]; 3], lo: &[[f64; WIDTH];
         }
     }
     free
+}
+
+/// [`ends_free`] in AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn ends_free_avx2(
+    x1: &[[f64; WIDTH]; 3],
+    v1: &[[f64; WIDTH]; 3],
+    lo: &[[f64; WIDTH]; 3],
+    hi: &[[f64; WIDTH]; 3],
+) -> bool {
+    use std::arch::x86_64::*;
+    // SAFETY: each row holds four f64s.
+    let load = |row: &[f64; WIDTH]| unsafe { _mm256_loadu_pd(row.as_ptr()) };
+    let magnitude = _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX));
+    let infinity = _mm256_set1_pd(f64::INFINITY);
+    let mut free = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    for a in 0..3 {
+        let x = load(&x1[a]);
+        // Ordered comparisons: false for NaN, as in the plain version.
+        let inside =
+            _mm256_and_pd(_mm256_cmp_pd::<_CMP_GE_OQ>(x, load(&lo[a])), _mm256_cmp_pd::<_CMP_LE_OQ>(x, load(&hi[a])));
+        let finite = _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_and_pd(load(&v1[a]), magnitude), infinity);
+        free = _mm256_and_pd(free, _mm256_and_pd(inside, finite));
+    }
+    _mm256_movemask_pd(free) == 0b1111
 }
 
 /// The mean flow plus the fluctuation `sigma zeta` at `x`.
@@ -1107,6 +1152,42 @@ mod tests {
         let particles = Injection::new(37, SizeDistribution::Monodisperse { diameter: 20e-6 }, 1000.0);
         assert!(lanes_match_one_at_a_time::<true, true>(&channel, &particles) > 0);
         assert!(lanes_match_one_at_a_time::<false, true>(&channel, &particles) > 0);
+    }
+
+    #[test]
+    fn the_free_step_test_is_the_same_in_avx2() {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            let (lo, hi) = ([[0.0, -1.0, 1e-9, 2.0]; 3], [[1.0, 0.0, 1.0, 2.0]; 3]);
+            let specials = [0.0, -0.0, 1.0, -1.0, 1e-9, 2.0, 0.5, f64::from_bits(1), 1.0 + f64::EPSILON];
+            let odd = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+            let mut rng = particle_rng(1, 2);
+            let (mut free, mut cases) = (0, 0);
+            for _ in 0..20_000 {
+                // Mostly inside each lane's box (its edges included), sometimes an edge case.
+                let mut pick = |l: usize| -> f64 {
+                    let r: f64 = rng.random();
+                    if r < 0.003 {
+                        odd[rng.random_range(0..3)]
+                    } else if r < 0.05 {
+                        specials[rng.random_range(0..specials.len())]
+                    } else if r < 0.1 {
+                        [lo[0][l], hi[0][l]][rng.random_range(0..2)]
+                    } else {
+                        lo[0][l] + (hi[0][l] - lo[0][l]) * rng.random::<f64>()
+                    }
+                };
+                let x1: [[f64; WIDTH]; 3] = std::array::from_fn(|_| std::array::from_fn(&mut pick));
+                let v1: [[f64; WIDTH]; 3] = std::array::from_fn(|_| std::array::from_fn(&mut pick));
+                let expected = ends_free::<false>(&x1, &v1, &lo, &hi);
+                // SAFETY: the processor has AVX2.
+                assert_eq!(unsafe { ends_free_avx2(&x1, &v1, &lo, &hi) }, expected, "{x1:?} {v1:?}");
+                free += usize::from(expected);
+                cases += 1;
+            }
+            // Both answers occur often enough to be tested.
+            assert!(free > 100 && cases - free > 100, "{free} of {cases}");
+        }
     }
 
     #[test]
