@@ -772,7 +772,7 @@ fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
 /// tested identical to [`run_particle`]'s). The compiler's vectorisation of `step_lanes` mixed
 /// 128- and 256-bit halves, gathered each variate lane by lane and kept the arrays on the
 /// stack: 269 -> 240 instructions per particle-step in the turbulent Brownian room, and one
-/// thread 1.13 times as fast (median of 8 alternating runs).
+/// thread 1.08 times as fast (median of 8 alternating runs, 1.06-1.28).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn step_lanes_avx2<const BROWN: bool>(
