@@ -372,8 +372,9 @@ impl Nodes4 {
 ///
 /// Adding `2^52` rounds `s` to the nearest integer and leaves it in the low bits of the sum's
 /// mantissa; one comparison turns the rounding into a floor. All of it is vector arithmetic
-/// across the lanes of the tracker's step, where `s as i32` became a scalar conversion with a
-/// branch for NaN in each lane, three times a step.
+/// when the compiler vectorises look-ups across the tracker's lanes (on processors without
+/// AVX2, see [`Table::at4`]), where `s as i32` became a scalar conversion with a branch for
+/// NaN in each lane, three times a step.
 #[inline(always)]
 fn cell_of(s: f64) -> (f64, usize) {
     const SHIFT: f64 = 4_503_599_627_370_496.0; // 2^52
