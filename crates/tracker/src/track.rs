@@ -517,11 +517,23 @@ fn run_lanes<const BROWN: bool, const TURB: bool>(
     ids: std::ops::Range<usize>,
     tally: &mut [WallTally],
 ) -> Vec<Record> {
+    // True in the build of this function for processors with AVX2.
+    const AVX2: bool = target_cfg_f!(all(target_arch = "x86_64", target_feature = "avx2"));
+    lanes::<BROWN, TURB, AVX2>(p, ids, tally)
+}
+
+/// The body of [`run_lanes`], with its AVX2 parts on when `AVX2` (which the caller may set
+/// only where the processor has AVX2). Inlined into each build of `run_lanes`; the tests also
+/// run it with `AVX2` off, the path of processors without it.
+#[inline(always)]
+fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
+    p: &Prepared<'_>,
+    ids: std::ops::Range<usize>,
+    tally: &mut [WallTally],
+) -> Vec<Record> {
     if p.steps == 0 {
         return ids.map(|id| run_particle::<BROWN, TURB, false, false, false>(p, id as u64, tally)).collect();
     }
-    // True in the build of this function for processors with AVX2.
-    const AVX2: bool = target_cfg_f!(all(target_arch = "x86_64", target_feature = "avx2"));
     let dt = p.scene.dt;
     let field = &p.field;
     let first = ids.start;
@@ -1259,6 +1271,9 @@ mod tests {
             .map(|id| run_particle::<BROWN, TURB, false, false, false>(&p, id, &mut alone_tally))
             .collect();
         assert_eq!(lanes, alone);
+        // The lanes as a processor without AVX2 runs them.
+        let mut plain_tally = vec![WallTally::default(); walls];
+        assert_eq!(super::lanes::<BROWN, TURB, false>(&p, 0..injection.count, &mut plain_tally), alone);
         for (a, b) in lane_tally.iter().zip(&alone_tally) {
             assert_eq!(
                 (a.contacts, a.rebounds, a.captures, a.resting),
