@@ -127,10 +127,12 @@ impl Xoshiro4 {
 /// The rotation of xoshiro256++'s last state word by 45 bits, as a left and a right shift
 /// whose amounts the optimiser cannot see.
 ///
-/// AVX2 has no 64-bit vector rotate. For a rotation it recognises (a constant amount, or
-/// `rotate_left`) LLVM moves the four lanes out to general registers, rotates them one by one
-/// and moves them back: about a quarter of the block's time on a Zen 3. Two shifts by unknown
-/// amounts and an `or` stay in the vector register. The result is the same.
+/// Neither SSE2 nor AVX2 has a 64-bit vector rotate. For a rotation it recognises (a constant
+/// amount, or `rotate_left`) LLVM moved the four lanes out to general registers, rotated them
+/// one by one and moved them back: about a quarter of the block's time on a Zen 3, measured
+/// when this loop was also the AVX2 build. Two shifts by unknown amounts and an `or` stay in
+/// the vector register. The result is the same. (Where the processor has AVX2 the first
+/// attempts are [`first_attempts_avx2`], whose shifts by constants stay vector shifts.)
 #[derive(Clone, Copy, Debug)]
 struct Rotation {
     left: u32,
@@ -231,6 +233,7 @@ fn first_attempts_portable(lanes: &mut Xoshiro4, z: &Ziggurat, out: &mut [f64]) 
 #[target_feature(enable = "avx2")]
 fn first_attempts_avx2(lanes: &mut Xoshiro4, z: &Ziggurat, out: &mut [f64]) -> [u64; LANES] {
     use std::arch::x86_64::*;
+    // SAFETY: each word holds four u64s.
     let load = |word: &[u64; LANES]| unsafe { _mm256_loadu_si256(word.as_ptr().cast()) };
     let [mut s0, mut s1, mut s2, mut s3] = [0, 1, 2, 3].map(|k| load(&lanes.s[k]));
     let layer_mask = _mm256_set1_epi64x((LAYERS - 1) as i64);

@@ -499,11 +499,10 @@ struct Lane {
 /// before the next, so the compiler vectorises the arithmetic across lanes and the processor
 /// overlaps the lanes' table look-ups, where one particle alone, each step waiting on the
 /// last, leaves it idle (the turbulent Brownian bench scene: 34 -> 37.5 million
-/// particle-steps/s on 2 cores). The four look-ups of a component are one [`Table::at4`]
-/// (in AVX2 where the processor has it: 303 -> 288 instructions per particle-step, and one
-/// thread 1.07 times as fast, median of 8 alternating runs), and where the processor has
-/// AVX2 the whole step before the walls is [`step_lanes_avx2`]. Under constant forcing, whenever every lane holds a particle
-/// they fly freely ([`fly_freely`]) up to the next step that needs more. (With Brownian motion
+/// particle-steps/s on 2 cores). Where the processor has AVX2 the whole step before the walls
+/// is [`step_lanes_avx2`] (its look-ups alone, [`Table::at4`] in AVX2, had taken the step from
+/// 303 to 288 instructions per particle-step). Under constant forcing, whenever every lane
+/// holds a particle they fly freely ([`fly_freely`]) up to the next step that needs more. (With Brownian motion
 /// alone, or a laminar profile, there are no look-ups to overlap and no free flight, and one
 /// particle at a time is faster: `track` does not send such scenes here.) A step that ends
 /// for every lane in the air, without a contact or a wrap, is taken for all lanes at once
@@ -721,8 +720,8 @@ struct Stepped {
 }
 
 /// The step of [`run_lanes`] as [`run_particle`] takes it, lane by lane: [`fluid_velocity`],
-/// [`fluctuation`] (through [`Table::at4`]), [`brownian_increment`] and [`relaxed`]. With
-/// `AVX2` (set only where the processor has it) a turbulent scene's step is
+/// [`fluctuation`] (four [`Table::at`]s through [`Table::at4`]), [`brownian_increment`] and
+/// [`relaxed`]. With `AVX2` (set only where the processor has it) a turbulent scene's step is
 /// [`step_lanes_avx2`].
 #[inline(always)]
 fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
@@ -754,7 +753,8 @@ fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
             for l in 0..WIDTH {
                 (d[l], sign[l]) = wall_distance(x[comp.axis][l], size[comp.axis]);
             }
-            let nodes = comp.table.at4::<AVX2>(d);
+            // (With AVX2 a turbulent step never gets here: it is `step_lanes_avx2`.)
+            let nodes = comp.table.at4::<false>(d);
             for l in 0..WIDTH {
                 let (du, next) = langevin_step(&nodes.lane(l), sign[l], zeta[a][l], z[l][a]);
                 uf[a][l] += du;
