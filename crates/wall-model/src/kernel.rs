@@ -226,14 +226,10 @@ fn sweep<
         }
         let impact = res.normal_velocity < T::ZERO;
         let update = valid & impact;
-        vx[i] = select(update, res.velocity[0], v[0]);
-        vy[i] = select(update, res.velocity[1], v[1]);
-        vz[i] = select(update, res.velocity[2], v[2]);
-        if SPIN {
-            wx[i] = select(update, res.spin[0], w[0]);
-            wy[i] = select(update, res.spin[1], w[1]);
-            wz[i] = select(update, res.spin[2], w[2]);
-        }
+        // The outcome byte is stored before the velocities. Stored after them, LLVM turned
+        // the first velocity store, `select(update, new, old)` of a value just loaded from
+        // the same place, into a masked store (`vmaskmovpd`), which is slow on AMD cores:
+        // in cache on a Zen 3 core the loops took 5-25 % longer with it.
         let code = select(
             !valid,
             Outcome::INVALID.0,
@@ -244,6 +240,14 @@ fn sweep<
             ),
         );
         outcome[i] = code;
+        vx[i] = select(update, res.velocity[0], v[0]);
+        vy[i] = select(update, res.velocity[1], v[1]);
+        vz[i] = select(update, res.velocity[2], v[2]);
+        if SPIN {
+            wx[i] = select(update, res.spin[0], w[0]);
+            wy[i] = select(update, res.spin[1], w[1]);
+            wz[i] = select(update, res.spin[2], w[2]);
+        }
         let loss = if TALLY {
             let l = energy_loss(&res);
             let keep = |x: T| select(update, x, T::ZERO);
