@@ -131,41 +131,6 @@ fn formula_from_denominators<T: Real>(a: T, b: T) -> T {
     (b - T::ONE) / (a * b)
 }
 
-/// Eq. (2)'s `e = (B - 1) / (A B)` before the capture rule, and a quotient `y / x` the caller
-/// needs as well, from one division instead of two: with `D = A B' x'`,
-///
-/// ```text
-/// e     = (B' - 1) x' / D
-/// y / x = y (A B' / D)
-/// ```
-///
-/// The impact uses it for `mu |vn| / |s|` (`y = mu |vn|`, `x` the slip speed `|s|`): division
-/// and square root share one slow unit, and this saves one of the friction loop's two divisions.
-/// The clamps keep `D` finite and normal whatever the inputs:
-///
-/// - `B' = B` clamped to `[1, T::UNIT_LOST]`. Below 1 the impact is captured and `e` is not
-///   used; beyond `T::UNIT_LOST` (`2^60` in `f64`, `2^30` in `f32`) `B - 1` rounds to `B`, so
-///   `e = 1/A` either way.
-/// - `x' = x` clamped to `T::QUOTIENT_RANGE` (`[1e-140, 1e140]` in `f64`, `[1e-11, 1e11]` in
-///   `f32`, in the units of `x`), and the quotient is `y / x'`: exact up to rounding inside the
-///   range, smaller than `y / x` below it, and taken as 0 above it. Both err towards a smaller
-///   quotient. For the friction ratio that means less tangential impulse, never more, so an
-///   impact still cannot gain energy. Above the range, 0 is what an overflowing slip gave
-///   anyway: no friction impulse.
-///
-/// `e` differs from [`restitution_formula`] by a few units in the last place (four roundings
-/// more).
-#[inline(always)]
-#[must_use]
-pub fn restitution_formula_and_quotient<T: Real>(a: T, b: T, y: T, x: T) -> (T, T) {
-    let b = b.max(T::ONE).min(T::UNIT_LOST);
-    let below_top = x <= T::QUOTIENT_RANGE.1;
-    let x = x.max(T::QUOTIENT_RANGE.0).min(T::QUOTIENT_RANGE.1);
-    let ab = a * b;
-    let inverse = T::ONE / (ab * x);
-    ((b - T::ONE) * x * inverse, select(below_top, y * (ab * inverse), T::ZERO))
-}
-
 /// The capture rule: `|vn| <= vc` (with `vc > 0`), or a formula restitution `e <= 0`, decided
 /// from `B` (the `adhesion_denominator`) without the division: `e = (B - 1) / (A B)` with
 /// `A >= 1` and `B >= 0` has the sign of `B - 1` (and is `-inf` for `B = 0`), so `e <= 0`
@@ -182,20 +147,11 @@ pub fn is_captured<T: Real>(c: &LawConstants<T>, speed: T, adhesion_denominator:
 pub fn coefficients<T: Real, P: Power<T>, Q: Power<T>>(c: &LawConstants<T>, p: P, q: Q, speed: T) -> Coefficients<T> {
     let a = material_denominator(c, p, speed);
     let b = adhesion_denominator(c, q, speed);
-    coefficients_from(c, speed, a, b, formula_from_denominators(a, b))
-}
-
-/// The coefficients from the denominators `A` (Eq. 8) and `B` (Eq. 9) at normal speed
-/// `speed` and the formula value of `e` computed from them (by [`coefficients`] directly, by
-/// the impact with [`restitution_formula_and_quotient`]), with the capture rule applied.
-#[inline(always)]
-#[must_use]
-pub fn coefficients_from<T: Real>(c: &LawConstants<T>, speed: T, a: T, b: T, formula: T) -> Coefficients<T> {
     let captured = is_captured(c, speed, b);
     Coefficients {
         restitution: T::ONE / a,
         adhesion: select(captured, T::ONE, (T::ONE / b).min(T::ONE)),
-        overall: select(captured, T::ZERO, formula),
+        overall: select(captured, T::ZERO, formula_from_denominators(a, b)),
         captured,
     }
 }
@@ -351,80 +307,6 @@ mod tests {
         assert_eq!(adhesion_denominator(&c, Exact(30.0), 0.5), 0.0);
         assert!(restitution_formula(&c, One, Exact(30.0), 0.5) == f64::NEG_INFINITY);
         assert!(is_captured(&c, 0.5, 0.0));
-    }
-
-    /// The relative errors of `restitution_formula_and_quotient`'s `e` and quotient against the
-    /// two divisions it replaces (the quotient's reference with the documented clamping of `x`).
-    fn shared_division_error<T: Real>(a: T, b: T, y: T, x: T) -> (f64, f64) {
-        let (e, quotient) = restitution_formula_and_quotient(a, b, y, x);
-        let e_direct = formula_from_denominators(a, b).to_f64();
-        let q_direct = if x > T::QUOTIENT_RANGE.1 { 0.0 } else { (y / x.max(T::QUOTIENT_RANGE.0)).to_f64() };
-        let relative = |got: T, want: f64| (got.to_f64() - want).abs() / want.abs().max(f64::MIN_POSITIVE);
-        (relative(e, e_direct), relative(quotient, q_direct))
-    }
-
-    proptest::proptest! {
-        /// One division for `e` and `y / x` gives both to within a few units in the last place,
-        /// over the whole range the clamps allow, in both precisions.
-        #[test]
-        fn the_shared_division_matches_two_divisions(
-            log_a in 0.0f64..150.0, log_b_minus_1 in -15.0f64..150.0, log_y in -30.0f64..30.0,
-            log_x in -140.0f64..140.0, log32 in 0.0f64..1.0,
-        ) {
-            let (a, b, y, x) = (10f64.powf(log_a), 1.0 + 10f64.powf(log_b_minus_1), 10f64.powf(log_y), 10f64.powf(log_x));
-            let (e_err, q_err) = shared_division_error(a, b.min(1e150), y, x);
-            proptest::prop_assert!(e_err <= 8.0 * f64::EPSILON, "e off by {e_err}");
-            proptest::prop_assert!(q_err <= 4.0 * f64::EPSILON, "quotient off by {q_err}");
-            // f32 over its own ranges: A <= 1e18, x within 1e-11..1e11.
-            let t = |lo: f64, hi: f64| (lo + (hi - lo) * log32) as f32;
-            let (a, b) = (10f32.powf(t(0.0, 18.0)), 1.0 + 10f32.powf(t(-5.0, 18.0)));
-            let (y, x) = (10f32.powf(t(-10.0, 10.0)), 10f32.powf(t(-11.0, 11.0)));
-            let (e_err, q_err) = shared_division_error(a, b, y, x);
-            proptest::prop_assert!(e_err <= 8.0 * f64::from(f32::EPSILON), "f32 e off by {e_err}");
-            proptest::prop_assert!(q_err <= 4.0 * f64::from(f32::EPSILON), "f32 quotient off by {q_err}");
-        }
-    }
-
-    #[test]
-    fn the_shared_division_stays_finite_and_exact_in_e_at_the_extremes() {
-        fn check<T: Real>(extremes: &[T]) {
-            for &a in &[T::ONE, T::from_f64(3.0), T::BIG] {
-                for &b in extremes.iter().filter(|&&b| b > T::ONE && b <= T::BIG) {
-                    for &x in extremes.iter().filter(|&&x| x >= T::ZERO) {
-                        for &y in &[T::ZERO, T::ONE, T::from_f64(1e9)] {
-                            let (e, quotient) = restitution_formula_and_quotient(a, b, y, x);
-                            let direct = formula_from_denominators(a, b);
-                            assert!(e.is_finite() && e >= T::ZERO && e <= T::ONE, "a {a:?} b {b:?} x {x:?}: e {e:?}");
-                            // x only scales the shared divisor: e must not depend on it at all.
-                            let relative = (e.to_f64() - direct.to_f64()).abs() / direct.to_f64();
-                            assert!(relative < 1e-5, "a {a:?} b {b:?} x {x:?}: e {e:?} vs {direct:?}");
-                            // Never above y / x: less friction impulse, never more.
-                            let bound =
-                                if x > T::ZERO { (y.to_f64() / x.to_f64()) * (1.0 + 1e-5) } else { f64::INFINITY };
-                            assert!(quotient >= T::ZERO && quotient.to_f64() <= bound, "y {y:?} x {x:?}: {quotient:?}");
-                        }
-                    }
-                }
-                // B <= 1 is captured and its e unused, but the results stay finite.
-                let (e, quotient) = restitution_formula_and_quotient(a, T::ZERO, T::ONE, T::ZERO);
-                assert!(e.is_finite() && quotient.is_finite());
-            }
-        }
-        check::<f64>(&[
-            0.0,
-            5e-324,
-            1e-300,
-            1e-140,
-            1.0 + 1e-15,
-            2.0,
-            1e18,
-            1e140,
-            1e150,
-            1e300,
-            f64::MAX,
-            f64::INFINITY,
-        ]);
-        check::<f32>(&[0.0, 1e-45, 1e-30, 1e-11, 1.0 + 1e-6, 2.0, 1e9, 1e11, 1e18, 1e30, f32::MAX, f32::INFINITY]);
     }
 
     #[test]

@@ -33,13 +33,6 @@ pub trait Real:
     /// A large value whose square is still finite: the law clamps its denominators here so
     /// that no product of two of them overflows (1e150 for `f64`, 1e18 for `f32`).
     const BIG: Self;
-    /// A power of two beyond which `x - 1` rounds to `x` (`2^60` for `f64`, `2^30` for `f32`).
-    const UNIT_LOST: Self;
-    /// The range a divisor is clamped to when [`crate::law::restitution_formula_and_quotient`]
-    /// forms two quotients from one division: with `A <= BIG` and `B <= UNIT_LOST`, the
-    /// product `A B x` stays finite and normal (`[1e-140, 1e140]` for `f64`, `[1e-11, 1e11]`
-    /// for `f32`).
-    const QUOTIENT_RANGE: (Self, Self);
 
     /// Rounds an `f64` to this type.
     fn from_f64(x: f64) -> Self;
@@ -166,8 +159,6 @@ impl Real for f64 {
     const HALF: Self = 0.5;
     const INFINITY: Self = f64::INFINITY;
     const BIG: Self = 1e150;
-    const UNIT_LOST: Self = 1_152_921_504_606_846_976.0; // 2^60
-    const QUOTIENT_RANGE: (Self, Self) = (1e-140, 1e140);
     const POW_TOLERANCE: f64 = 1e-12;
 
     #[inline(always)]
@@ -243,8 +234,6 @@ impl Real for f32 {
     const HALF: Self = 0.5;
     const INFINITY: Self = f32::INFINITY;
     const BIG: Self = 1e18;
-    const UNIT_LOST: Self = 1_073_741_824.0; // 2^30
-    const QUOTIENT_RANGE: (Self, Self) = (1e-11, 1e11);
     const POW_TOLERANCE: f64 = 5e-6;
 
     #[inline(always)]

@@ -123,9 +123,8 @@ impl WallLaw {
     /// One impact in 3-D: velocity `v` (m/s) against a wall with unit normal `normal` (into the
     /// fluid), with spin `(w, radius)` (rad/s, m) when the scene tracks it. The same code as the
     /// batch kernel. For `vn >= 0` the result is meaningless (not an impact): check
-    /// `normal_velocity < 0` first, as the batch kernel does. With friction (`mu > 0`) the
-    /// impact forms `e` in one division with the friction quotient, so its `e` can differ from
-    /// [`WallLaw::coefficients`]' by a few units in the last place.
+    /// `normal_velocity < 0` first, as the batch kernel does. Its coefficients are
+    /// [`WallLaw::coefficients`]' at `|vn|`, bit for bit.
     #[must_use]
     pub fn impact(&self, v: DVec3, spin: Option<(DVec3, f64)>, normal: DVec3) -> ImpactResult<f64> {
         let c = &self.constants;
@@ -187,5 +186,24 @@ mod tests {
         assert!(own.velocity[2] > 0.0, "0.8 m/s is above this law's vc and rebounds");
         let sticky = law.impact_with_capture_velocity(v, n, 1.0);
         assert_eq!(sticky.velocity, [0.0; 3], "below a 1 m/s capture velocity the particle deposits");
+    }
+
+    #[test]
+    fn an_impact_s_coefficients_are_the_curve_s_bit_for_bit() {
+        for (mu, p, q) in [(0.0, 1.0, 0.5), (0.3, 1.0, 0.5), (0.3, 1.0, 1.0), (0.5, 1.3, 0.7)] {
+            let law = WallLaw::new(LawParams {
+                p,
+                q,
+                ..LawParams::symmetric(12.5, 0.065, 0.074, 1.0, 0.5).with_friction(mu)
+            })
+            .unwrap();
+            for speed in [1e-3, 0.074, 0.0741, 0.3, 1.0, 7.5, 1e3] {
+                for (tangential, spin) in [(0.0, None), (0.4, None), (0.4, Some((DVec3::new(0.0, 3e3, 0.0), 5e-5)))] {
+                    let v = DVec3::new(tangential, -0.2 * tangential, -speed);
+                    let res = law.impact(v, spin, DVec3::Z);
+                    assert_eq!(res.coefficients, law.coefficients(speed), "mu {mu} p {p} q {q} |vn| {speed}");
+                }
+            }
+        }
     }
 }
