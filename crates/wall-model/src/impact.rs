@@ -81,13 +81,13 @@ fn axpy<T: Real>(a: T, x: [T; 3], y: [T; 3]) -> [T; 3] {
 pub trait Tangent<T: Real>: Copy {
     /// The zero vector.
     fn zero() -> Self;
-    /// `a x + y`.
+    /// `a x + y`, each component one fused multiply-add.
     #[must_use]
     fn axpy(a: T, x: Self, y: Self) -> Self;
-    /// `x + y`.
-    #[must_use]
-    fn add(x: Self, y: Self) -> Self;
-    /// The dot product, summed left to right.
+    /// The dot product, summed left to right. Without fused multiply-adds: a sum of two
+    /// products then does not depend on their order, so a wall along an axis (two
+    /// components, rotated) and the same wall as a general normal (three, one of them zero)
+    /// agree bit for bit.
     fn dot(self, other: Self) -> T;
 }
 
@@ -98,11 +98,7 @@ impl<T: Real, const N: usize> Tangent<T> for [T; N] {
     }
     #[inline(always)]
     fn axpy(a: T, x: Self, y: Self) -> Self {
-        std::array::from_fn(|i| a * x[i] + y[i])
-    }
-    #[inline(always)]
-    fn add(x: Self, y: Self) -> Self {
-        std::array::from_fn(|i| x[i] + y[i])
+        std::array::from_fn(|i| a.mul_add(x[i], y[i]))
     }
     #[inline(always)]
     fn dot(self, other: Self) -> T {
@@ -241,7 +237,7 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     let e = coefficients.overall;
     let impulse_t = Tangent::axpy(-ratio, slip_vector, Tangent::zero());
 
-    let tangential = if FRICTION { Tangent::add(impulse_t, v_t) } else { v_t };
+    let tangential = if FRICTION { Tangent::axpy(-ratio, slip_vector, v_t) } else { v_t };
     let mut velocity = n.compose(tangential, -e, v_n);
     let mut spin = if SPIN && FRICTION { n.spin_kick(w, T::from_f64(-2.5) / radius, impulse_t) } else { w };
 

@@ -9,9 +9,11 @@
 //! what it uses, and each loop is compiled for AVX-512, AVX2+FMA and baseline x86-64, picked
 //! at run time (`multiversion`). The loop body calls [`crate::impact::resolve`], the same
 //! function the scalar API uses, so batch and scalar results agree bit for bit (on an axis
-//! wall, up to the sign of zeros, with energies summed in the rotated order). No FMA contraction or
-//! fast-math is enabled, so the three instruction sets give identical results too by
-//! construction (the tests run whichever build the machine selects).
+//! wall, up to the sign of zeros, with energies summed in the rotated order). No fast-math and
+//! no implicit FMA contraction: the fused multiply-adds the code asks for (`mul_add`) are
+//! correctly rounded on every build (libm's `fma` where the CPU has none, slowly), so the
+//! three instruction sets give identical results too by construction (the tests run
+//! whichever build the machine selects).
 //!
 //! Above [`PARALLEL_MIN`] particles the batch is halved recursively down to [`LEAF`]-sized
 //! pieces run by rayon on the current thread pool. The halving and the order in which tallies
