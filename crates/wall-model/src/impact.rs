@@ -218,12 +218,12 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     // that has to wait for the slip's square root. Zero slip makes the quotient infinite:
     // rolling with no impulse.
     let coefficients = law::coefficients(c, p, q, speed);
+    let e = coefficients.overall;
     let (slip_vector, slip, ratio, j, rolling) = if FRICTION {
         let s = if SPIN { Tangent::axpy(-radius, n.spin_velocity(w), v_t) } else { v_t };
         let slip = s.dot(s).sqrt();
         let sliding_scale = c.mu * speed.abs();
         let per_slip = sliding_scale / slip;
-        let e = coefficients.overall;
         let two_sevenths = T::from_f64(2.0 / 7.0);
         let limit = select(slip > T::ZERO, per_slip, T::INFINITY) * (T::ONE + e);
         let rolling = two_sevenths <= limit;
@@ -234,7 +234,6 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     } else {
         (Tangent::zero(), T::ZERO, T::ZERO, T::ZERO, false)
     };
-    let e = coefficients.overall;
     let impulse_t = Tangent::axpy(-ratio, slip_vector, Tangent::zero());
 
     let tangential = if FRICTION { Tangent::axpy(-ratio, slip_vector, v_t) } else { v_t };
