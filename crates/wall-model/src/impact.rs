@@ -24,7 +24,7 @@
 //! Scenes that do not track spin take `w = 0` and discard `W` (`SPIN = false`); scenes with
 //! `mu = 0` have no tangential impulse (`FRICTION = false`). Both skip the corresponding work.
 
-use crate::law::{self, Coefficients, LawConstants};
+use crate::law::{self, Coefficients, LawConstants, Powers};
 use crate::power::Power;
 use crate::real::{select, Real};
 
@@ -206,6 +206,23 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     radius: T,
     n: impl Frame<T>,
 ) -> ImpactResult<T> {
+    let powers = law::powers(c, p, q, -n.split(v).0);
+    resolve_with_powers::<T, SPIN, FRICTION>(c, powers, mode, v, w, radius, n)
+}
+
+/// [`resolve`] with the law's two powers at this impact's `|vn|` given, for the batch kernel,
+/// which evaluates general exponents in passes of their own.
+#[inline(always)]
+#[must_use]
+pub fn resolve_with_powers<T: Real, const SPIN: bool, const FRICTION: bool>(
+    c: &LawConstants<T>,
+    powers: Powers<T>,
+    mode: CaptureMode,
+    v: [T; 3],
+    w: [T; 3],
+    radius: T,
+    n: impl Frame<T>,
+) -> ImpactResult<T> {
     // The normal part `vn n` is shared by `v_t` and the rebound's `Vn n = -e vn n`, so that
     // after `e` only one multiply and one add remain on the way to the velocity.
     let (vn, v_n, v_t) = n.split(v);
@@ -217,7 +234,7 @@ pub fn resolve<T: Real, P: Power<T>, Q: Power<T>, const SPIN: bool, const FRICTI
     // slow to finish, two divisions side by side take less time than one shared division
     // that has to wait for the slip's square root. Zero slip makes the quotient infinite:
     // rolling with no impulse.
-    let coefficients = law::coefficients(c, p, q, speed);
+    let coefficients = law::coefficients_from_powers(c, speed, powers);
     let e = coefficients.overall;
     let (slip_vector, slip, ratio, j, rolling) = if FRICTION {
         let s = if SPIN { Tangent::axpy(-radius, n.spin_velocity(w), v_t) } else { v_t };

@@ -89,18 +89,57 @@ pub struct Coefficients<T> {
     pub captured: bool,
 }
 
+/// The bases of the law's two powers at `speed = |vn|`: `|vn|/k1` of Eq. (8) and `|u|/kappa1`
+/// of Eq. (9), with `u = |vn| - vc`.
+#[inline(always)]
+#[must_use]
+pub fn power_bases<T: Real>(c: &LawConstants<T>, speed: T) -> [T; 2] {
+    [speed * c.inv_k1, (speed - c.vc).abs() * c.inv_kappa1]
+}
+
+/// The law's two powers at one speed: `(|vn|/k1)^p` and `(|u|/kappa1)^q`. Everything else in
+/// the law is a few additions and one division; the batch kernel evaluates general exponents'
+/// powers in passes of their own and hands them in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Powers<T> {
+    /// `(|vn|/k1)^p`, Eq. (8).
+    pub material: T,
+    /// `(|u|/kappa1)^q`, Eq. (9).
+    pub adhesion: T,
+}
+
+/// The law's two powers at `speed = |vn|`.
+#[inline(always)]
+#[must_use]
+pub fn powers<T: Real, P: Power<T>, Q: Power<T>>(c: &LawConstants<T>, p: P, q: Q, speed: T) -> Powers<T> {
+    let [material, adhesion] = power_bases(c, speed);
+    Powers { material: p.pow(material), adhesion: q.pow(adhesion) }
+}
+
+/// `A` of Eq. (8) from its power: `R = 1/A`, clamped to `[1, BIG]`.
+#[inline(always)]
+fn material_denominator_of<T: Real>(c: &LawConstants<T>, power: T) -> T {
+    (c.k_ratio + power).max(T::ONE).min(T::BIG)
+}
+
+/// `B` of Eq. (9) from its power: `rho = 1/B`, clamped to `[0, BIG]`.
+#[inline(always)]
+fn adhesion_denominator_of<T: Real>(c: &LawConstants<T>, power: T) -> T {
+    (c.kappa_ratio + power).min(T::BIG)
+}
+
 /// `A` of Eq. (8): `R = 1/A`, clamped to `[1, BIG]`.
 #[inline(always)]
 #[must_use]
 pub fn material_denominator<T: Real, P: Power<T>>(c: &LawConstants<T>, p: P, speed: T) -> T {
-    (c.k_ratio + p.pow(speed * c.inv_k1)).max(T::ONE).min(T::BIG)
+    material_denominator_of(c, p.pow(power_bases(c, speed)[0]))
 }
 
 /// `B` of Eq. (9): `rho = 1/B`, clamped to `[0, BIG]`.
 #[inline(always)]
 #[must_use]
 pub fn adhesion_denominator<T: Real, Q: Power<T>>(c: &LawConstants<T>, q: Q, speed: T) -> T {
-    (c.kappa_ratio + q.pow((speed - c.vc).abs() * c.inv_kappa1)).min(T::BIG)
+    adhesion_denominator_of(c, q.pow(power_bases(c, speed)[1]))
 }
 
 /// Material restitution `R(|vn|)`, Eq. (8), capped at 1.
@@ -145,8 +184,15 @@ pub fn is_captured<T: Real>(c: &LawConstants<T>, speed: T, adhesion_denominator:
 #[inline(always)]
 #[must_use]
 pub fn coefficients<T: Real, P: Power<T>, Q: Power<T>>(c: &LawConstants<T>, p: P, q: Q, speed: T) -> Coefficients<T> {
-    let a = material_denominator(c, p, speed);
-    let b = adhesion_denominator(c, q, speed);
+    coefficients_from_powers(c, speed, powers(c, p, q, speed))
+}
+
+/// [`coefficients`] from the law's two [`Powers`] at `speed = |vn|`.
+#[inline(always)]
+#[must_use]
+pub fn coefficients_from_powers<T: Real>(c: &LawConstants<T>, speed: T, powers: Powers<T>) -> Coefficients<T> {
+    let a = material_denominator_of(c, powers.material);
+    let b = adhesion_denominator_of(c, powers.adhesion);
     let captured = is_captured(c, speed, b);
     Coefficients {
         restitution: T::ONE / a,

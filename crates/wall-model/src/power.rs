@@ -20,9 +20,25 @@ pub enum PowerMode {
 }
 
 /// A power `x -> x^y` for `x >= 0`, with the exponent fixed for a whole batch.
+///
+/// A power is evaluated in two halves, [`Power::start`] then [`Power::finish`]; [`Power::pow`]
+/// is the two in a row, and no implementation overrides it. The batch kernel evaluates a
+/// [`Power::STAGED`] power half by half, each half in a pass of its own over a block of
+/// particles, and so gets the same bits as a scalar call.
 pub trait Power<T: Real>: Copy + Send + Sync {
+    /// True when the batch kernel evaluates this power in passes of its own before the
+    /// impacts: a long chain of dependent operations vectorises better alone, and a loop
+    /// that calls libm's `powf` does not vectorise at all.
+    const STAGED: bool;
+    /// The first half of `x^y`.
+    fn start(self, x: T) -> T;
+    /// The second half: `finish(start(x)) = x^y`.
+    fn finish(self, t: T) -> T;
     /// `x^y` for `x >= 0`; `0^y = 0` and `inf^y = inf` for `y > 0`.
-    fn pow(self, x: T) -> T;
+    #[inline(always)]
+    fn pow(self, x: T) -> T {
+        self.finish(self.start(x))
+    }
 }
 
 /// The exponent 1: `x^1 = x`, no work at all.
@@ -33,7 +49,7 @@ pub struct One;
 #[derive(Clone, Copy, Debug)]
 pub struct Half;
 
-/// A general positive exponent, by [`fast_pow`].
+/// A general positive exponent, by [`fast_pow`]: `log2`, then `exp2`.
 #[derive(Clone, Copy, Debug)]
 pub struct Fast<T>(pub T);
 
@@ -42,30 +58,50 @@ pub struct Fast<T>(pub T);
 pub struct Exact<T>(pub T);
 
 impl<T: Real> Power<T> for One {
+    const STAGED: bool = false;
     #[inline(always)]
-    fn pow(self, x: T) -> T {
+    fn start(self, x: T) -> T {
         x
+    }
+    #[inline(always)]
+    fn finish(self, t: T) -> T {
+        t
     }
 }
 
 impl<T: Real> Power<T> for Half {
+    const STAGED: bool = false;
     #[inline(always)]
-    fn pow(self, x: T) -> T {
-        x.sqrt()
+    fn start(self, x: T) -> T {
+        x
+    }
+    #[inline(always)]
+    fn finish(self, t: T) -> T {
+        t.sqrt()
     }
 }
 
 impl<T: Real> Power<T> for Fast<T> {
+    const STAGED: bool = true;
     #[inline(always)]
-    fn pow(self, x: T) -> T {
-        fast_pow(x, self.0)
+    fn start(self, x: T) -> T {
+        scaled_log2(x, self.0)
+    }
+    #[inline(always)]
+    fn finish(self, t: T) -> T {
+        t.fast_exp2()
     }
 }
 
 impl<T: Real> Power<T> for Exact<T> {
+    const STAGED: bool = true;
     #[inline(always)]
-    fn pow(self, x: T) -> T {
-        x.powf(self.0)
+    fn start(self, x: T) -> T {
+        x
+    }
+    #[inline(always)]
+    fn finish(self, t: T) -> T {
+        t.powf(self.0)
     }
 }
 
@@ -77,9 +113,15 @@ impl<T: Real> Power<T> for Exact<T> {
 #[inline(always)]
 #[must_use]
 pub fn fast_pow<T: Real>(x: T, y: T) -> T {
-    let result = (y * x.fast_log2()).fast_exp2();
-    let result = select(x == T::INFINITY, T::INFINITY, result);
-    select(x == T::ZERO, T::ZERO, result)
+    scaled_log2(x, y).fast_exp2()
+}
+
+/// `y log2 x`, the exponent of `2` in [`fast_pow`], with `0^y = 0` and `inf^y = inf` carried
+/// as `-inf` and `+inf` (which [`Real::fast_exp2`] maps to 0 and infinity).
+#[inline(always)]
+fn scaled_log2<T: Real>(x: T, y: T) -> T {
+    let t = select(x == T::INFINITY, T::INFINITY, y * x.fast_log2());
+    select(x == T::ZERO, -T::INFINITY, t)
 }
 
 #[cfg(test)]

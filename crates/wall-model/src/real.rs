@@ -65,7 +65,7 @@ pub trait Real:
     fn fast_log2(self) -> Self;
     /// `2^t`, relative error below [`Real::POW_TOLERANCE`] / 4; results that would be
     /// subnormal flush to zero, and results above `2^(MAX_EXP - 1/2)` (about 1.3e308 for
-    /// `f64`, 2.4e38 for `f32`) become infinity.
+    /// `f64`, 2.4e38 for `f32`) become infinity, as do `2^-inf = 0` and `2^inf = inf`.
     #[must_use]
     fn fast_exp2(self) -> Self;
     /// The stated bound on the relative error of [`crate::power::fast_pow`] for
@@ -349,6 +349,10 @@ mod tests {
         assert_eq!(1023.6f64.fast_exp2(), f64::INFINITY); // the documented edge
         assert_eq!((-200.0f32).fast_exp2(), 0.0);
         assert_eq!(200.0f32.fast_exp2(), f32::INFINITY);
+        assert_eq!(f64::NEG_INFINITY.fast_exp2(), 0.0);
+        assert_eq!(f64::INFINITY.fast_exp2(), f64::INFINITY);
+        assert_eq!(f32::NEG_INFINITY.fast_exp2(), 0.0);
+        assert_eq!(f32::INFINITY.fast_exp2(), f32::INFINITY);
     }
 
     #[test]
