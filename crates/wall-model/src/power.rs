@@ -21,23 +21,25 @@ pub enum PowerMode {
 
 /// A power `x -> x^y` for `x >= 0`, with the exponent fixed for a whole batch.
 ///
-/// A power is evaluated in two halves, [`Power::start`] then [`Power::finish`]; [`Power::pow`]
-/// is the two in a row, and no implementation overrides it. The batch kernel evaluates a
-/// [`Power::STAGED`] power half by half, each half in a pass of its own over a block of
-/// particles, and so gets the same bits as a scalar call.
+/// A power is evaluated in three stages, [`Power::start`], [`Power::middle`] and
+/// [`Power::finish`]; [`Power::pow`] is the three in a row, and no implementation overrides
+/// it. The batch kernel evaluates a [`Power::STAGED`] power stage by stage, each stage in a
+/// pass of its own over a block of particles, and so gets the same bits as a scalar call.
 pub trait Power<T: Real>: Copy + Send + Sync {
     /// True when the batch kernel evaluates this power in passes of its own before the
-    /// impacts: a long chain of dependent operations vectorises better alone, and a loop
-    /// that calls libm's `powf` does not vectorise at all.
+    /// impacts: a long chain of dependent operations vectorises better cut into short ones,
+    /// and a loop that calls libm's `powf` does not vectorise at all.
     const STAGED: bool;
-    /// The first half of `x^y`.
-    fn start(self, x: T) -> T;
-    /// The second half: `finish(start(x)) = x^y`.
+    /// The first stage: two numbers for the second.
+    fn start(self, x: T) -> [T; 2];
+    /// The second stage.
+    fn middle(self, state: [T; 2]) -> T;
+    /// The last stage: `finish(middle(start(x))) = x^y`.
     fn finish(self, t: T) -> T;
     /// `x^y` for `x >= 0`; `0^y = 0` and `inf^y = inf` for `y > 0`.
     #[inline(always)]
     fn pow(self, x: T) -> T {
-        self.finish(self.start(x))
+        self.finish(self.middle(self.start(x)))
     }
 }
 
@@ -49,7 +51,8 @@ pub struct One;
 #[derive(Clone, Copy, Debug)]
 pub struct Half;
 
-/// A general positive exponent, by [`fast_pow`]: `log2`, then `exp2`.
+/// A general positive exponent, by [`fast_pow`]: the two halves of `log2` (the division, then
+/// a polynomial), then `exp2`.
 #[derive(Clone, Copy, Debug)]
 pub struct Fast<T>(pub T);
 
@@ -60,7 +63,11 @@ pub struct Exact<T>(pub T);
 impl<T: Real> Power<T> for One {
     const STAGED: bool = false;
     #[inline(always)]
-    fn start(self, x: T) -> T {
+    fn start(self, x: T) -> [T; 2] {
+        [x, T::ZERO]
+    }
+    #[inline(always)]
+    fn middle(self, [x, _]: [T; 2]) -> T {
         x
     }
     #[inline(always)]
@@ -72,7 +79,11 @@ impl<T: Real> Power<T> for One {
 impl<T: Real> Power<T> for Half {
     const STAGED: bool = false;
     #[inline(always)]
-    fn start(self, x: T) -> T {
+    fn start(self, x: T) -> [T; 2] {
+        [x, T::ZERO]
+    }
+    #[inline(always)]
+    fn middle(self, [x, _]: [T; 2]) -> T {
         x
     }
     #[inline(always)]
@@ -83,10 +94,20 @@ impl<T: Real> Power<T> for Half {
 
 impl<T: Real> Power<T> for Fast<T> {
     const STAGED: bool = true;
+    /// `log2 x` reduced to `(e, z)` ([`Real::log2_reduce`]), with `0^y = 0` and
+    /// `inf^y = inf` carried as `e = -inf` and `e = +inf`.
     #[inline(always)]
-    fn start(self, x: T) -> T {
-        scaled_log2(x, self.0)
+    fn start(self, x: T) -> [T; 2] {
+        let (exponent, z) = x.log2_reduce();
+        let exponent = select(x == T::INFINITY, T::INFINITY, exponent);
+        [select(x == T::ZERO, -T::INFINITY, exponent), z]
     }
+    /// `y log2 x`, the exponent of 2.
+    #[inline(always)]
+    fn middle(self, [exponent, z]: [T; 2]) -> T {
+        self.0 * T::log2_series(exponent, z)
+    }
+    /// `2^(y log2 x)` ([`Real::fast_exp2`] maps `-inf` to 0 and `+inf` to infinity).
     #[inline(always)]
     fn finish(self, t: T) -> T {
         t.fast_exp2()
@@ -96,7 +117,11 @@ impl<T: Real> Power<T> for Fast<T> {
 impl<T: Real> Power<T> for Exact<T> {
     const STAGED: bool = true;
     #[inline(always)]
-    fn start(self, x: T) -> T {
+    fn start(self, x: T) -> [T; 2] {
+        [x, T::ZERO]
+    }
+    #[inline(always)]
+    fn middle(self, [x, _]: [T; 2]) -> T {
         x
     }
     #[inline(always)]
@@ -113,15 +138,7 @@ impl<T: Real> Power<T> for Exact<T> {
 #[inline(always)]
 #[must_use]
 pub fn fast_pow<T: Real>(x: T, y: T) -> T {
-    scaled_log2(x, y).fast_exp2()
-}
-
-/// `y log2 x`, the exponent of `2` in [`fast_pow`], with `0^y = 0` and `inf^y = inf` carried
-/// as `-inf` and `+inf` (which [`Real::fast_exp2`] maps to 0 and infinity).
-#[inline(always)]
-fn scaled_log2<T: Real>(x: T, y: T) -> T {
-    let t = select(x == T::INFINITY, T::INFINITY, y * x.fast_log2());
-    select(x == T::ZERO, -T::INFINITY, t)
+    Fast(y).pow(x)
 }
 
 #[cfg(test)]

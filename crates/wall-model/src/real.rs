@@ -60,9 +60,21 @@ pub trait Real:
     fn mul_add(self, a: Self, b: Self) -> Self;
     /// `log2(x)` for finite `x > 0` (subnormals included), relative error below
     /// [`Real::POW_TOLERANCE`] / 4 away from `x = 1` and absolute error below that near it.
-    /// Values outside that domain give unspecified (but not trapping) results.
+    /// Values outside that domain give unspecified (but not trapping) results. It is
+    /// [`Real::log2_reduce`] then [`Real::log2_series`].
+    #[inline(always)]
     #[must_use]
-    fn fast_log2(self) -> Self;
+    fn fast_log2(self) -> Self {
+        let (exponent, z) = self.log2_reduce();
+        Self::log2_series(exponent, z)
+    }
+    /// The first half of [`Real::fast_log2`]: `x = 2^e m` with `m` in `[sqrt(1/2), sqrt(2))`,
+    /// returned as `(e, z)` with `z = (m - 1)/(m + 1)`, the half with the division.
+    #[must_use]
+    fn log2_reduce(self) -> (Self, Self);
+    /// The second half of [`Real::fast_log2`]: `log2 x = e + 2 atanh(z) / ln 2`, a polynomial.
+    #[must_use]
+    fn log2_series(exponent: Self, z: Self) -> Self;
     /// `2^t`, relative error below [`Real::POW_TOLERANCE`] / 4; results that would be
     /// subnormal flush to zero, and results above `2^(MAX_EXP - 1/2)` (about 1.3e308 for
     /// `f64`, 2.4e38 for `f32`) become infinity, as do `2^-inf = 0` and `2^inf = inf`.
@@ -145,10 +157,16 @@ const EXP_F64: [f64; 10] = [
 /// `f32` arguments it is applied to.
 const EXP_F32: [f64; 6] = [1.0, 1.0, 0.4999937213862548, 0.1666657702559799, 0.04187564445233737, 0.008363173074513711];
 
-/// `log2(x) = e + ln(m)/ln(2)` with `x = m 2^e`, shared by both precisions.
+/// `z = (m - 1)/(m + 1)`, shared by both precisions.
 #[inline(always)]
-fn log2_from_parts<T: Real, const N: usize>(exponent: T, mantissa: T, series: &[f64; N]) -> T {
-    let z = (mantissa - T::ONE) / (mantissa + T::ONE);
+fn atanh_argument<T: Real>(mantissa: T) -> T {
+    (mantissa - T::ONE) / (mantissa + T::ONE)
+}
+
+/// `log2(x) = e + ln(m)/ln(2) = e + 2 atanh(z)/ln(2)` with `x = m 2^e`, shared by both
+/// precisions.
+#[inline(always)]
+fn log2_from_parts<T: Real, const N: usize>(exponent: T, z: T, series: &[f64; N]) -> T {
     let series = polynomial(z * z, series);
     (z * series).mul_add(T::from_f64(2.0 * core::f64::consts::LOG2_E), exponent)
 }
@@ -199,7 +217,7 @@ impl Real for f64 {
     }
 
     #[inline(always)]
-    fn fast_log2(self) -> Self {
+    fn log2_reduce(self) -> (Self, Self) {
         // Subnormals are scaled into the normal range first.
         let subnormal = self < f64::MIN_POSITIVE;
         let x = select(subnormal, self * f64::from_bits(0x4350_0000_0000_0000), self); // 2^54
@@ -212,7 +230,12 @@ impl Real for f64 {
         let exponent = f64::from_bits(biased | 0x4330_0000_0000_0000)
             - (4_503_599_627_370_496.0 + 1023.0)
             - select(subnormal, 54.0, 0.0);
-        log2_from_parts(exponent, mantissa, &ATANH_F64)
+        (exponent, atanh_argument(mantissa))
+    }
+
+    #[inline(always)]
+    fn log2_series(exponent: Self, z: Self) -> Self {
+        log2_from_parts(exponent, z, &ATANH_F64)
     }
 
     #[inline(always)]
@@ -274,7 +297,7 @@ impl Real for f32 {
     }
 
     #[inline(always)]
-    fn fast_log2(self) -> Self {
+    fn log2_reduce(self) -> (Self, Self) {
         let subnormal = self < f32::MIN_POSITIVE;
         let x = select(subnormal, self * f32::from_bits(0x4b80_0000), self); // 2^24
         let bits = x.to_bits();
@@ -283,7 +306,12 @@ impl Real for f32 {
         mantissa = select(above, mantissa * 0.5, mantissa);
         let biased = (bits >> 23) + above as u32;
         let exponent = f32::from_bits(biased | 0x4b00_0000) - (8_388_608.0 + 127.0) - select(subnormal, 24.0, 0.0);
-        log2_from_parts(exponent, mantissa, &ATANH_F32)
+        (exponent, atanh_argument(mantissa))
+    }
+
+    #[inline(always)]
+    fn log2_series(exponent: Self, z: Self) -> Self {
+        log2_from_parts(exponent, z, &ATANH_F32)
     }
 
     #[inline(always)]
