@@ -3,9 +3,13 @@
 //! The paper's fits use `p = 1` and `q` in `{1, 1/2}`; those take a plain value or a square
 //! root. Any other exponent takes either [`Fast`], a vectorisable `2^(y log2 x)` with a stated
 //! relative error ([`Real::POW_TOLERANCE`]: 1e-12 for `f64`, 5e-6 for `f32`), or [`Exact`],
-//! the platform's libm `powf` (about 25 times slower inside a batch loop, since it does not
-//! vectorise). [`PowerMode`] picks between the two; the default is [`PowerMode::Fast`],
-//! whose error is orders of magnitude below the scatter of any measured `e(vn)`.
+//! the platform's libm `powf`, which does not vectorise: a batch of ten million impacts with
+//! it took about four times as long on two Zen 3 cores. [`PowerMode`] picks between the two;
+//! the default is [`PowerMode::Fast`], whose error is orders of magnitude below the scatter
+//! of any measured `e(vn)`.
+//!
+//! Each power is written as three stages ([`Power`]) so that the batch kernel can run a block
+//! of particles through one stage at a time; a scalar call runs the three in a row.
 
 use crate::real::{select, Real};
 
