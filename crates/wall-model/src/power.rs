@@ -34,10 +34,16 @@ pub trait Power<T: Real>: Copy + Send + Sync {
     /// impacts: a long chain of dependent operations vectorises better cut into short ones,
     /// and a loop that calls libm's `powf` does not vectorise at all.
     const STAGED: bool;
-    /// The first stage: two numbers for the second.
-    fn start(self, x: T) -> [T; 2];
-    /// The second stage.
-    fn middle(self, state: [T; 2]) -> T;
+    /// The first stage: two numbers for the second. By default `x` passed on as it is.
+    #[inline(always)]
+    fn start(self, x: T) -> [T; 2] {
+        [x, T::ZERO]
+    }
+    /// The second stage. By default the first number passed on as it is.
+    #[inline(always)]
+    fn middle(self, state: [T; 2]) -> T {
+        state[0]
+    }
     /// The last stage: `finish(middle(start(x))) = x^y`.
     fn finish(self, t: T) -> T;
     /// `x^y` for `x >= 0`; `0^y = 0` and `inf^y = inf` for `y > 0`.
@@ -67,14 +73,6 @@ pub struct Exact<T>(pub T);
 impl<T: Real> Power<T> for One {
     const STAGED: bool = false;
     #[inline(always)]
-    fn start(self, x: T) -> [T; 2] {
-        [x, T::ZERO]
-    }
-    #[inline(always)]
-    fn middle(self, [x, _]: [T; 2]) -> T {
-        x
-    }
-    #[inline(always)]
     fn finish(self, t: T) -> T {
         t
     }
@@ -82,14 +80,6 @@ impl<T: Real> Power<T> for One {
 
 impl<T: Real> Power<T> for Half {
     const STAGED: bool = false;
-    #[inline(always)]
-    fn start(self, x: T) -> [T; 2] {
-        [x, T::ZERO]
-    }
-    #[inline(always)]
-    fn middle(self, [x, _]: [T; 2]) -> T {
-        x
-    }
     #[inline(always)]
     fn finish(self, t: T) -> T {
         t.sqrt()
@@ -120,14 +110,6 @@ impl<T: Real> Power<T> for Fast<T> {
 
 impl<T: Real> Power<T> for Exact<T> {
     const STAGED: bool = true;
-    #[inline(always)]
-    fn start(self, x: T) -> [T; 2] {
-        [x, T::ZERO]
-    }
-    #[inline(always)]
-    fn middle(self, [x, _]: [T; 2]) -> T {
-        x
-    }
     #[inline(always)]
     fn finish(self, t: T) -> T {
         t.powf(self.0)
