@@ -254,8 +254,12 @@ fn sweep<
                 let vn = normals.at(i).0.split([vx[i], vy[i], vz[i]]).0;
                 [material[j], adhesion[j]] = law::power_bases(&law_at(i), -vn);
             }
-            power_in_passes(p, &mut material[..m], &mut material_aside[..m]);
-            power_in_passes(q, &mut adhesion[..m], &mut adhesion_aside[..m]);
+            if P::STAGED {
+                power_in_passes(p, &mut material[..m], &mut material_aside[..m]);
+            }
+            if Q::STAGED {
+                power_in_passes(q, &mut adhesion[..m], &mut adhesion_aside[..m]);
+            }
         }
 
         let mut particle = |j: usize| -> (u8, EnergyLoss<T>) {
@@ -265,7 +269,10 @@ fn sweep<
             let (w, r) = if SPIN { ([wx[i], wy[i], wz[i]], radius[i]) } else { ([T::ZERO; 3], T::ONE) };
             let law = law_at(i);
             let law_powers = if P::STAGED || Q::STAGED {
-                Powers { material: powers[0][j], adhesion: powers[2][j] }
+                // The block's staged powers; a power that is not staged from its base here.
+                let material = if P::STAGED { powers[0][j] } else { p.pow(powers[0][j]) };
+                let adhesion = if Q::STAGED { powers[2][j] } else { q.pow(powers[2][j]) };
+                Powers { material, adhesion }
             } else {
                 law::powers(&law, p, q, -n.split(v).0)
             };

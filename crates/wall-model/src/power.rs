@@ -172,6 +172,17 @@ mod tests {
     }
 
     #[test]
+    fn each_exponent_pair_has_its_case() {
+        assert_eq!(Exponents::of(1.0, 1.0), Exponents::OneOne);
+        assert_eq!(Exponents::of(1.0, 0.5), Exponents::OneHalf);
+        assert_eq!(Exponents::of(0.5, 1.0), Exponents::HalfOne);
+        assert_eq!(Exponents::of(0.5, 0.5), Exponents::HalfHalf);
+        assert_eq!(Exponents::of(1.0, 0.7), Exponents::OneGeneral);
+        assert_eq!(Exponents::of(0.7, 1.0), Exponents::General);
+        assert_eq!(Exponents::of(1.3, 0.7), Exponents::General);
+    }
+
+    #[test]
     fn one_and_half_are_exact() {
         assert_eq!(<One as Power<f64>>::pow(One, 3.7), 3.7);
         assert_eq!(<Half as Power<f64>>::pow(Half, 2.25), 1.5);
@@ -191,6 +202,8 @@ pub enum Exponents {
     HalfOne,
     /// `p = 1/2`, `q = 1/2`.
     HalfHalf,
+    /// `p = 1` (as in all the paper's fits) with any other `q`: only `q` takes a power.
+    OneGeneral,
     /// Any other pair.
     General,
 }
@@ -204,6 +217,7 @@ impl Exponents {
             (1.0, 0.5) => Self::OneHalf,
             (0.5, 1.0) => Self::HalfOne,
             (0.5, 0.5) => Self::HalfHalf,
+            (1.0, _) => Self::OneGeneral,
             _ => Self::General,
         }
     }
@@ -231,11 +245,16 @@ macro_rules! with_powers {
                 let ($p, $q) = (Half, Half);
                 $body
             }
+            (Exponents::OneGeneral, PowerMode::Fast) => {
+                let ($p, $q) = (One, Fast($q_value));
+                $body
+            }
             (Exponents::General, PowerMode::Fast) => {
                 let ($p, $q) = (Fast($p_value), Fast($q_value));
                 $body
             }
-            (Exponents::General, PowerMode::Exact) => {
+            // libm's `powf(x, 1)` is `x`: one loop serves every pair.
+            (Exponents::General | Exponents::OneGeneral, PowerMode::Exact) => {
                 let ($p, $q) = (Exact($p_value), Exact($q_value));
                 $body
             }
