@@ -10,10 +10,10 @@
 //! at run time (`multiversion`). The loop body calls [`crate::impact::resolve_with_powers`],
 //! which the scalar API's [`crate::impact::resolve`] calls too, so batch and scalar results
 //! agree bit for bit (on an axis wall, up to the sign of zeros, with energies summed in the
-//! rotated order). General exponents (not 1 or 1/2) have their two powers per impact evaluated
-//! first, a block of particles at a time, in passes of their own: the bases, then for each
-//! power the division of its `log2`, the polynomial of its `log2`, and its `exp2` (see
-//! [`crate::power::Power::STAGED`]). In cache that takes a fifth to 30 % off their loops' time.
+//! rotated order). The power of a general exponent (not 1 or 1/2) is evaluated first, a block
+//! of particles at a time, in passes of its own: the bases, then the division of its `log2`,
+//! the polynomial of its `log2`, and its `exp2` (see [`crate::power::Power::STAGED`]). In
+//! cache that takes a sixth to 30 % off those loops' time.
 //! No fast-math and no implicit FMA contraction: the fused multiply-adds the code asks for
 //! (`mul_add`) are correctly rounded on every build (libm's `fma` where the CPU has none,
 //! slowly), so the three instruction sets give identical results too by construction (the
@@ -235,9 +235,9 @@ fn sweep<
     let law_at = |i: usize| if PER_VC { c.with_capture_velocity(vcs[i]) } else { *c };
 
     // The piece is swept in blocks. General exponents' powers are evaluated first, for the
-    // whole block: the bases in one pass, then each power stage by stage, one pass per stage
-    // (see `Power::STAGED`). Such short passes keep more particles in flight than a loop in
-    // which every impact waits for a long chain of polynomials.
+    // whole block: the bases in one pass, then each staged power one pass per stage (see
+    // `Power::STAGED`). Such short passes keep more particles in flight than a loop in which
+    // every impact waits for a long chain of polynomials.
     let mut powers = [[T::ZERO; BLOCK]; 4];
     let mut counts = [0u64; 4];
     let mut energy = [[0.0f64; LANES]; 4];
