@@ -16,7 +16,8 @@
 //! - `noise` (internal): each particle's random streams and its standard normal variates,
 //!   made a block of steps at a time by a vectorised ziggurat.
 //! - `track` (internal): one particle through the run: the exponential integrator, the
-//!   contacts within a step, the particle's [`Fate`].
+//!   particle's [`Fate`]; in it `fluid` (the fluid velocity a particle sees), `contacts` (the
+//!   wall contacts within a step) and `lanes` (four particles side by side).
 //! - [`run`](mod@run): all particles across cores, reproducibly, and the [`Run`]'s statistics:
 //!   mass balance, deposition velocity, loss rate, deposition maps.
 //! - [`convergence`]: run time against error of the integrators over the step size.

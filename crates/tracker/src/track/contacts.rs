@@ -1,0 +1,248 @@
+//! Wall contacts within a step: the step's trajectory ([`Flight`]), the contact time on it
+//! by bisection, and what each wall does to the particle there.
+
+use depo_wall_model::energy::{energy_loss, EnergyLoss};
+use glam::DVec3;
+
+use crate::geometry::Wall;
+use crate::scene::WallBehaviour;
+
+use super::{relaxed, Body, Fate, Prepared, State, WallTally, BISECTIONS, MAX_CONTACTS};
+
+/// The trajectory of one (part of a) step.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Flight<const EULER: bool> {
+    pub(super) x0: DVec3,
+    pub(super) v0: DVec3,
+    pub(super) v_inf: DVec3,
+    pub(super) tau: f64,
+    pub(super) decay: f64,
+    pub(super) relax: f64,
+    /// Length of the whole step this flight belongs to, s (the Brownian share is `t / dt`).
+    pub(super) dt: f64,
+    pub(super) bx: DVec3,
+    pub(super) bv: DVec3,
+}
+
+impl<const EULER: bool> Flight<EULER> {
+    /// Position and velocity at the end of the full step.
+    #[inline(always)]
+    pub(super) fn end(&self) -> (DVec3, DVec3) {
+        if EULER {
+            let x = self.x0 + self.v0 * self.dt + self.bx;
+            let v = self.v0 + (self.v_inf - self.v0) * (self.dt / self.tau) + self.bv;
+            (x, v)
+        } else {
+            let [x0, v0, v_inf, bx, bv] = [self.x0, self.v0, self.v_inf, self.bx, self.bv].map(|q| q.to_array());
+            let axis = |a: usize| relaxed(x0[a], v0[a], v_inf[a], (self.dt, self.decay, self.relax), bx[a], bv[a]);
+            let [(x, vx), (y, vy), (z, vz)] = [axis(0), axis(1), axis(2)];
+            (DVec3::new(x, y, z), DVec3::new(vx, vy, vz))
+        }
+    }
+
+    /// Position and velocity `t` (s, `0 < t <= dt`) into the flight.
+    pub(super) fn at(&self, t: f64) -> (DVec3, DVec3) {
+        let share = t / self.dt;
+        if EULER {
+            let (_, v1) = self.end();
+            (self.x0 + (self.v0 * self.dt + self.bx) * share, self.v0 + (v1 - self.v0) * share)
+        } else {
+            let e = (-t / self.tau).exp();
+            let dv = self.v0 - self.v_inf;
+            let relax = if self.tau > 0.0 { self.tau * -(-t / self.tau).exp_m1() } else { 0.0 };
+            (self.x0 + self.v_inf * t + dv * relax + self.bx * share, self.v_inf + dv * e + self.bv * share)
+        }
+    }
+
+    /// The same trajectory restarted at `x, v` for the remaining `left` seconds, without the
+    /// Brownian increments.
+    pub(super) fn restart(&self, x: DVec3, v: DVec3, left: f64) -> Self {
+        let (decay, relax) = if self.tau > 0.0 {
+            let h = left / self.tau;
+            ((-h).exp(), self.tau * -(-h).exp_m1())
+        } else {
+            (0.0, 0.0)
+        };
+        Self { x0: x, v0: v, decay, relax, dt: left, bx: DVec3::ZERO, bv: DVec3::ZERO, ..*self }
+    }
+}
+
+#[inline(always)]
+pub(super) fn inside(x: DVec3, r: f64, p: &Prepared<'_>) -> bool {
+    // Periodic axes have no bounds: `[-inf, inf]`.
+    let mut ok = true;
+    for ((x, lower), upper) in x.to_array().into_iter().zip(p.lower).zip(p.upper) {
+        ok &= (x >= lower + r) & (x <= upper - r);
+    }
+    ok
+}
+
+#[inline(always)]
+pub(super) fn wrap(mut x: DVec3, p: &Prepared<'_>) -> DVec3 {
+    if !p.periodic {
+        return x;
+    }
+    for a in 0..3 {
+        if !p.walled[a] {
+            x[a] = x[a].rem_euclid(p.size[a]);
+        }
+    }
+    x
+}
+
+/// How a step with wall contacts ended.
+pub(super) enum AfterContacts {
+    /// Still in the air, in this state at the step's end.
+    Airborne(State),
+    /// Gone: its fate, the time into the step and where.
+    Left(Fate, f64, DVec3),
+}
+
+/// Resolves the wall contacts of a step whose end lies through a wall.
+#[cold]
+pub(super) fn contacts<const EULER: bool>(
+    p: &Prepared<'_>,
+    body: &Body,
+    mut flight: Flight<EULER>,
+    mut s: State,
+    tally: &mut [WallTally],
+) -> AfterContacts {
+    let r = body.radius;
+    let mut elapsed = 0.0;
+    let (mut last_wall, mut last_x) = (0, s.x);
+    for _ in 0..MAX_CONTACTS {
+        let (x1, v1) = flight.end();
+        if inside(x1, r, p) {
+            s.x = wrap(x1, p);
+            s.v = v1;
+            return AfterContacts::Airborne(s);
+        }
+        if !x1.is_finite() {
+            return AfterContacts::Left(Fate::Escaped, elapsed, s.x);
+        }
+        // The earliest plane crossed.
+        let mut first: Option<(f64, &Wall)> = None;
+        for wall in &p.walls {
+            let plane = if wall.upper { wall.position - r } else { wall.position + r };
+            let outside = |x: DVec3| if wall.upper { x[wall.axis] > plane } else { x[wall.axis] < plane };
+            if !outside(x1) {
+                continue;
+            }
+            let (mut lo, mut hi) = (0.0, flight.dt);
+            for _ in 0..BISECTIONS {
+                let mid = 0.5 * (lo + hi);
+                if outside(flight.at(mid).0) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            if first.is_none_or(|(t, _)| hi < t) {
+                first = Some((hi, wall));
+            }
+        }
+        let (t, wall) = first.expect("a step ending outside crossed a wall plane");
+        let (mut x, mut v) = flight.at(t);
+        x[wall.axis] = if wall.upper { wall.position - r } else { wall.position + r };
+        let x = wrap(x, p);
+        elapsed += t;
+        (last_wall, last_x) = (wall.id, x);
+        let n = DVec3::from_array(wall.normal());
+        // The trajectory crossed the plane: its normal velocity points into the wall.
+        let vn = v.dot(n);
+        v -= n * (vn + vn.abs());
+        let left = flight.dt - t;
+        let w = &mut tally[wall.id];
+        w.contacts += 1;
+        match p.scene.walls[wall.id] {
+            WallBehaviour::Sink => {
+                w.captures += 1;
+                w.energy.deposition += 0.5 * body.aero.mass * v.length_squared();
+                return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
+            }
+            WallBehaviour::Reflect => {
+                w.rebounds += 1;
+                v -= 2.0 * n * v.dot(n);
+                s.zeta[wall.axis] = -s.zeta[wall.axis];
+                let mut v_inf = flight.v_inf;
+                v_inf[wall.axis] = body.settling[wall.axis] - (v_inf[wall.axis] - body.settling[wall.axis]);
+                flight = Flight { v_inf, ..flight.restart(x, v, left) };
+            }
+            WallBehaviour::Law { .. } if v.dot(n) >= 0.0 => {
+                // Touching without closing in: resting contact.
+                w.captures += 1;
+                return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
+            }
+            WallBehaviour::Law { law, size } => {
+                let vc = match size {
+                    Some(size) => size.capture_velocity(law.params().vc, body.aero.diameter),
+                    None => law.params().vc,
+                };
+                let result = law.impact_with_capture_velocity(v, n, vc);
+                let loss = energy_loss(&result);
+                let m = body.aero.mass;
+                w.energy += EnergyLoss {
+                    material: m * loss.material,
+                    adhesion: m * loss.adhesion,
+                    friction: m * loss.friction,
+                    deposition: m * loss.deposition,
+                };
+                if !result.velocity.iter().all(|c| c.is_finite()) {
+                    return AfterContacts::Left(Fate::Escaped, elapsed, x);
+                }
+                if result.coefficients.captured {
+                    w.captures += 1;
+                    return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
+                }
+                w.rebounds += 1;
+                flight = flight.restart(x, DVec3::from_array(result.velocity), left);
+            }
+        }
+    }
+    // Still bouncing: at rest on the last wall it touched.
+    tally[last_wall].resting += 1;
+    AfterContacts::Left(Fate::Deposited(last_wall), elapsed, last_x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flight<const EULER: bool>(tau: f64, dt: f64) -> Flight<EULER> {
+        let h = dt / tau;
+        Flight {
+            x0: DVec3::new(0.1, 0.2, 0.3),
+            v0: DVec3::new(1.0, -2.0, 0.5),
+            v_inf: DVec3::new(0.2, 0.0, -0.1),
+            tau,
+            decay: (-h).exp(),
+            relax: tau * -(-h).exp_m1(),
+            dt,
+            bx: DVec3::ZERO,
+            bv: DVec3::ZERO,
+        }
+    }
+
+    #[test]
+    fn exponential_flight_is_the_exact_drag_solution_and_composes() {
+        for (tau, dt) in [(1e-3, 0.1), (0.5, 0.1), (10.0, 0.1), (0.0, 0.1)] {
+            let f = flight::<false>(tau, dt);
+            let (x, v) = f.end();
+            let (xa, va) = f.at(dt);
+            assert!((x - xa).length() < 1e-14 && (v - va).length() < 1e-14, "tau {tau}");
+            // By hand: v(t) = v_inf + (v0 - v_inf) e^(-t/tau).
+            let e = if tau > 0.0 { (-dt / tau).exp() } else { 0.0 };
+            assert!((v - (f.v_inf + (f.v0 - f.v_inf) * e)).length() < 1e-14);
+            // Stopping halfway and flying on from there ends at the same state.
+            let (xm, vm) = f.at(0.4 * dt);
+            let (x2, v2) = f.restart(xm, vm, 0.6 * dt).end();
+            assert!((x2 - x).length() < 1e-13 && (v2 - v).length() < 1e-13, "tau {tau}: {x2} {x}");
+            assert!(x.is_finite() && v.is_finite());
+        }
+        // Euler is first order: its end differs from the exact one by O(dt^2 / tau).
+        let f = flight::<false>(0.5, 0.01);
+        let (xe, _) = flight::<true>(0.5, 0.01).end();
+        let leading = (f.v0 - f.v_inf).length() * 0.01 * 0.01 / (2.0 * 0.5);
+        assert!(((xe - f.end().0).length() / leading - 1.0).abs() < 0.01);
+    }
+}
