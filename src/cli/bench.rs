@@ -12,7 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{Error, Format};
+use super::{print_csv, Error, Format};
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
@@ -83,18 +83,27 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
         Format::Csv => {
-            out!("kernel,impacts_per_second,ceiling_impacts_per_second,fraction_of_ceiling,gigabytes_per_second,max_error");
-            for r in &rows {
-                out!(
-                    "{},{},{},{},{},{}",
-                    r.kernel,
-                    r.impacts_per_second,
-                    r.ceiling_impacts_per_second,
-                    r.fraction_of_ceiling,
-                    r.gigabytes_per_second,
-                    r.max_error
-                );
-            }
+            let header = [
+                "kernel",
+                "impacts_per_second",
+                "ceiling_impacts_per_second",
+                "fraction_of_ceiling",
+                "gigabytes_per_second",
+                "max_error",
+            ];
+            print_csv(
+                &header,
+                rows.iter().map(|r| {
+                    [
+                        r.kernel.clone(),
+                        r.impacts_per_second.to_string(),
+                        r.ceiling_impacts_per_second.to_string(),
+                        r.fraction_of_ceiling.to_string(),
+                        r.gigabytes_per_second.to_string(),
+                        r.max_error.to_string(),
+                    ]
+                }),
+            )?;
         }
         Format::Table => {
             out!("N = {}, {} threads, median of {} interleaved rounds", args.n, args.threads, args.reps);
@@ -193,19 +202,21 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
         Format::Csv => {
-            out!("scheme,dt_over_tau,seconds,particle_steps,relative_error,observed_order");
-            for r in &rows {
-                let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
-                out!(
-                    "{},{},{},{},{},{}",
-                    r.scheme,
-                    r.dt_over_tau,
-                    r.seconds,
-                    r.particle_steps,
-                    opt(r.relative_error),
-                    opt(r.observed_order)
-                );
-            }
+            let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+            let header = ["scheme", "dt_over_tau", "seconds", "particle_steps", "relative_error", "observed_order"];
+            print_csv(
+                &header,
+                rows.iter().map(|r| {
+                    [
+                        r.scheme.to_string(),
+                        r.dt_over_tau.to_string(),
+                        r.seconds.to_string(),
+                        r.particle_steps.to_string(),
+                        opt(r.relative_error),
+                        opt(r.observed_order),
+                    ]
+                }),
+            )?;
         }
         Format::Table => {
             out!(

@@ -8,7 +8,7 @@ use depo::wall_model::theory::{
 };
 use serde::Serialize;
 
-use super::{Error, Format};
+use super::{print_csv, Error, Format};
 
 #[derive(Args, Debug)]
 pub struct CaptureArgs {
@@ -147,19 +147,29 @@ fn print(report: &Report, format: Format) -> Result<(), Error> {
     match format {
         Format::Json => out!("{}", serde_json::to_string_pretty(report).map_err(|e| e.to_string())?),
         Format::Csv => {
-            out!("diameter,jkr_capture_velocity,jkr_energy_loss,tabor_parameter,contact_regime,elastic,dahneke_capture_velocity");
-            for r in &report.rows {
-                out!(
-                    "{:e},{:e},{:e},{:e},{},{},{}",
-                    r.diameter,
-                    r.jkr_capture_velocity,
-                    r.jkr_energy_loss,
-                    r.tabor_parameter,
-                    r.contact_regime,
-                    elastic(r.elastic),
-                    r.dahneke_capture_velocity.map_or(String::new(), |v| format!("{v:e}"))
-                );
-            }
+            let header = [
+                "diameter",
+                "jkr_capture_velocity",
+                "jkr_energy_loss",
+                "tabor_parameter",
+                "contact_regime",
+                "elastic",
+                "dahneke_capture_velocity",
+            ];
+            print_csv(
+                &header,
+                report.rows.iter().map(|r| {
+                    [
+                        format!("{:e}", r.diameter),
+                        format!("{:e}", r.jkr_capture_velocity),
+                        format!("{:e}", r.jkr_energy_loss),
+                        format!("{:e}", r.tabor_parameter),
+                        r.contact_regime.to_string(),
+                        elastic(r.elastic).to_string(),
+                        r.dahneke_capture_velocity.map_or(String::new(), |v| format!("{v:e}")),
+                    ]
+                }),
+            )?;
         }
         Format::Table => {
             out!("effective modulus E* = {:.4e} Pa", report.effective_modulus);

@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use super::plot::{self, Series};
 use super::room::{Measured, Tally};
-use super::{scene_file, Error, Format};
+use super::{print_csv, scene_file, Error, Format};
 
 #[derive(ClapArgs, Debug)]
 pub struct ChannelArgs {
@@ -95,21 +95,33 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             out!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?);
         }
         Format::Csv => {
-            out!("tau_plus,diameter_um,schmidt,v_plus,v_plus_error,deposits,wood,papavergos_hedley,ratio_to_wood");
-            for r in &rows {
-                out!(
-                    "{},{},{},{},{},{},{},{},{}",
-                    r.tau_plus,
-                    r.diameter_um,
-                    r.schmidt,
-                    r.v_plus.value,
-                    r.v_plus.error,
-                    r.v_plus.events,
-                    r.wood,
-                    r.papavergos_hedley,
-                    r.ratio_to_wood
-                );
-            }
+            let header = [
+                "tau_plus",
+                "diameter_um",
+                "schmidt",
+                "v_plus",
+                "v_plus_error",
+                "deposits",
+                "wood",
+                "papavergos_hedley",
+                "ratio_to_wood",
+            ];
+            print_csv(
+                &header,
+                rows.iter().map(|r| {
+                    [
+                        r.tau_plus.to_string(),
+                        r.diameter_um.to_string(),
+                        r.schmidt.to_string(),
+                        r.v_plus.value.to_string(),
+                        r.v_plus.error.to_string(),
+                        r.v_plus.events.to_string(),
+                        r.wood.to_string(),
+                        r.papavergos_hedley.to_string(),
+                        r.ratio_to_wood.to_string(),
+                    ]
+                }),
+            )?;
         }
         Format::Table => {
             out!(

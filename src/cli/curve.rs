@@ -6,7 +6,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{Error, Format, LawArgs};
+use super::{print_csv, Error, Format, LawArgs};
 
 #[derive(Args, Debug)]
 pub struct CurveArgs {
@@ -94,10 +94,19 @@ pub fn run(args: &CurveArgs) -> Result<(), Error> {
             return write_plot(args, &curve.points);
         }
         Format::Csv => {
-            out!("vn,R,rho,e,captured");
-            for p in &points {
-                out!("{},{},{},{},{}", p.vn, p.r, p.rho, p.e, u8::from(p.captured));
-            }
+            let header = ["vn", "R", "rho", "e", "captured"];
+            print_csv(
+                &header,
+                points.iter().map(|p| {
+                    [
+                        p.vn.to_string(),
+                        p.r.to_string(),
+                        p.rho.to_string(),
+                        p.e.to_string(),
+                        u8::from(p.captured).to_string(),
+                    ]
+                }),
+            )?;
         }
         Format::Table => {
             let lp = law.params();

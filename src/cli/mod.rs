@@ -138,6 +138,24 @@ pub fn emit(line: std::fmt::Arguments<'_>) {
     }
 }
 
+/// Prints CSV: the header, then one record per row, each field quoted only where it needs it
+/// (the `csv` crate's rules). The caller formats its own numbers.
+pub fn print_csv<R>(header: &[&str], rows: impl IntoIterator<Item = R>) -> Result<(), Error>
+where
+    R: IntoIterator,
+    R::Item: AsRef<[u8]>,
+{
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(header).map_err(|e| e.to_string())?;
+    for row in rows {
+        writer.write_record(row).map_err(|e| e.to_string())?;
+    }
+    let bytes = writer.into_inner().map_err(|e| e.to_string())?;
+    let text = String::from_utf8(bytes).map_err(|e| e.to_string())?;
+    out!("{}", text.trim_end_matches('\n'));
+    Ok(())
+}
+
 /// Runs the parsed command.
 pub fn run(args: Args) -> Result<(), Error> {
     match args.command {

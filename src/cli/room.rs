@@ -11,7 +11,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{scene_file, Error, Format};
+use super::{print_csv, scene_file, Error, Format};
 
 #[derive(ClapArgs, Debug)]
 pub struct RoomArgs {
@@ -170,25 +170,42 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             out!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?);
         }
         Format::Csv => {
-            out!("diameter_um,floor,floor_error,floor_lai_nazaroff,ceiling,ceiling_error,ceiling_lai_nazaroff,walls,walls_error,walls_lai_nazaroff,beta_per_hour,beta_error,beta_lai_nazaroff");
-            for r in &rows {
-                out!(
-                    "{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                    r.diameter_um,
-                    r.floor.value,
-                    r.floor.error,
-                    r.lai_nazaroff.floor,
-                    r.ceiling.value,
-                    r.ceiling.error,
-                    r.lai_nazaroff.ceiling,
-                    r.walls.value,
-                    r.walls.error,
-                    r.lai_nazaroff.walls,
-                    r.beta_per_hour.value,
-                    r.beta_per_hour.error,
-                    r.lai_nazaroff.beta_per_hour
-                );
-            }
+            let header = [
+                "diameter_um",
+                "floor",
+                "floor_error",
+                "floor_lai_nazaroff",
+                "ceiling",
+                "ceiling_error",
+                "ceiling_lai_nazaroff",
+                "walls",
+                "walls_error",
+                "walls_lai_nazaroff",
+                "beta_per_hour",
+                "beta_error",
+                "beta_lai_nazaroff",
+            ];
+            print_csv(
+                &header,
+                rows.iter().map(|r| {
+                    [
+                        r.diameter_um,
+                        r.floor.value,
+                        r.floor.error,
+                        r.lai_nazaroff.floor,
+                        r.ceiling.value,
+                        r.ceiling.error,
+                        r.lai_nazaroff.ceiling,
+                        r.walls.value,
+                        r.walls.error,
+                        r.lai_nazaroff.walls,
+                        r.beta_per_hour.value,
+                        r.beta_per_hour.error,
+                        r.lai_nazaroff.beta_per_hour,
+                    ]
+                    .map(|x| x.to_string())
+                }),
+            )?;
         }
         Format::Table => {
             out!(
