@@ -18,10 +18,10 @@ use super::{
 };
 
 /// Particles stepped side by side by [`run_lanes`].
-pub(super) const WIDTH: usize = 4;
+const WIDTH: usize = 4;
 
 /// A particle in one of [`run_lanes`]' lanes: what the step itself does not need.
-pub(super) struct Lane {
+struct Lane {
     id: u64,
     body: Body,
     start: [f64; 3],
@@ -60,7 +60,7 @@ pub(super) fn run_lanes<const BROWN: bool, const TURB: bool>(
 /// only where the processor has AVX2). Inlined into each build of `run_lanes`; the tests also
 /// run it with `AVX2` off, the path of processors without it.
 #[inline(always)]
-pub(super) fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
+fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
     p: &Prepared<'_>,
     ids: std::ops::Range<usize>,
     tally: &mut [WallTally],
@@ -231,7 +231,7 @@ pub(super) fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
 
 /// The per-lane constants a step of [`run_lanes`] needs, side by side.
 #[derive(Clone, Copy)]
-pub(super) struct LaneConstants<'a> {
+struct LaneConstants<'a> {
     settling: &'a [[f64; WIDTH]; 3],
     decay: &'a [f64; WIDTH],
     relax: &'a [f64; WIDTH],
@@ -246,7 +246,7 @@ type StepScene<'a> = (&'a FlowField, [f64; 3], usize);
 /// One step of [`run_lanes`]' four lanes, before any wall: the fluid velocity seen `uf`, the
 /// position and velocity at the step's end, and the Brownian increments (for the contact
 /// search of a lane that meets a wall). The lanes' `zeta` are advanced.
-pub(super) struct Stepped {
+struct Stepped {
     uf: [[f64; WIDTH]; 3],
     x1: [[f64; WIDTH]; 3],
     v1: [[f64; WIDTH]; 3],
@@ -259,7 +259,7 @@ pub(super) struct Stepped {
 /// [`relaxed`]. With `AVX2` (set only where the processor has it) a turbulent scene's step is
 /// [`step_lanes_avx2`].
 #[inline(always)]
-pub(super) fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
+fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
     x: &[[f64; WIDTH]; 3],
     v: &[[f64; WIDTH]; 3],
     zeta: &mut [[f64; WIDTH]; 3],
@@ -322,7 +322,7 @@ pub(super) fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
 /// thread 1.08 times as fast (median of 8 alternating runs, 1.06-1.28).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-pub(super) fn step_lanes_avx2<const BROWN: bool>(
+fn step_lanes_avx2<const BROWN: bool>(
     x: &[[f64; WIDTH]; 3],
     v: &[[f64; WIDTH]; 3],
     zeta: &mut [[f64; WIDTH]; 3],
@@ -409,7 +409,7 @@ pub(super) fn step_lanes_avx2<const BROWN: bool>(
 
 /// What [`fly_freely`] needs of its lanes: the constant velocity each relaxes to, the step's
 /// constants, and the box each position must stay in for its step to be plain flight.
-pub(super) struct FreeLanes {
+struct FreeLanes {
     v_inf: [[f64; WIDTH]; 3],
     decay: [f64; WIDTH],
     relax: [f64; WIDTH],
@@ -423,7 +423,7 @@ pub(super) struct FreeLanes {
 /// [`inside`], rounded the same way) and `[0, size)` along a periodic axis (where [`wrap`]
 /// leaves the coordinate as it is).
 #[inline(always)]
-pub(super) fn free_bounds(p: &Prepared<'_>, axis: usize, r: f64) -> (f64, f64) {
+fn free_bounds(p: &Prepared<'_>, axis: usize, r: f64) -> (f64, f64) {
     if p.walled[axis] {
         (p.lower[axis] + r, p.upper[axis] - r)
     } else {
@@ -440,7 +440,7 @@ pub(super) fn free_bounds(p: &Prepared<'_>, axis: usize, r: f64) -> (f64, f64) {
 /// on one thread the AVX2 [`ends_free`] made it 1.6 times as fast again, median of six
 /// alternating runs).
 #[inline(always)]
-pub(super) fn fly_freely<const AVX2: bool>(
+fn fly_freely<const AVX2: bool>(
     x: &mut [[f64; WIDTH]; 3],
     v: &mut [[f64; WIDTH]; 3],
     c: FreeLanes,
@@ -471,7 +471,7 @@ pub(super) fn fly_freely<const AVX2: bool>(
 /// it) the twelve tests are ANDed as vector masks and read with one `movmsk`; the compiler
 /// made about 45 instructions of packing out of the plain version.
 #[inline(always)]
-pub(super) fn ends_free<const AVX2: bool>(
+fn ends_free<const AVX2: bool>(
     x1: &[[f64; WIDTH]; 3],
     v1: &[[f64; WIDTH]; 3],
     lo: &[[f64; WIDTH]; 3],
@@ -494,7 +494,7 @@ pub(super) fn ends_free<const AVX2: bool>(
 /// [`ends_free`] in AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-pub(super) fn ends_free_avx2(
+fn ends_free_avx2(
     x1: &[[f64; WIDTH]; 3],
     v1: &[[f64; WIDTH]; 3],
     lo: &[[f64; WIDTH]; 3],
