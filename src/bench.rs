@@ -336,6 +336,7 @@ pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
             for (exponents, power) in [
                 ((1.0, 1.0), PowerMode::Fast),
                 ((1.0, 0.5), PowerMode::Fast),
+                ((1.0, 0.7), PowerMode::Fast),
                 ((1.3, 0.7), PowerMode::Fast),
                 ((1.3, 0.7), PowerMode::Exact),
             ] {
