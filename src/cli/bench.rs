@@ -12,7 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{print_csv, Error, Format};
+use super::{print_csv_rows, Error, Format};
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
@@ -82,29 +82,7 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
     progress.finish_and_clear();
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
-        Format::Csv => {
-            let header = [
-                "kernel",
-                "impacts_per_second",
-                "ceiling_impacts_per_second",
-                "fraction_of_ceiling",
-                "gigabytes_per_second",
-                "max_error",
-            ];
-            print_csv(
-                &header,
-                rows.iter().map(|r| {
-                    [
-                        r.kernel.clone(),
-                        r.impacts_per_second.to_string(),
-                        r.ceiling_impacts_per_second.to_string(),
-                        r.fraction_of_ceiling.to_string(),
-                        r.gigabytes_per_second.to_string(),
-                        r.max_error.to_string(),
-                    ]
-                }),
-            )?;
-        }
+        Format::Csv => print_csv_rows(&rows)?,
         Format::Table => {
             out!("N = {}, {} threads, median of {} interleaved rounds", args.n, args.threads, args.reps);
             out!(
@@ -201,23 +179,7 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
     let show = |x: Option<f64>, precision: usize| x.map_or("unstable".to_string(), |v| format!("{v:.precision$e}"));
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
-        Format::Csv => {
-            let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
-            let header = ["scheme", "dt_over_tau", "seconds", "particle_steps", "relative_error", "observed_order"];
-            print_csv(
-                &header,
-                rows.iter().map(|r| {
-                    [
-                        r.scheme.to_string(),
-                        r.dt_over_tau.to_string(),
-                        r.seconds.to_string(),
-                        r.particle_steps.to_string(),
-                        opt(r.relative_error),
-                        opt(r.observed_order),
-                    ]
-                }),
-            )?;
-        }
+        Format::Csv => print_csv_rows(&rows)?,
         Format::Table => {
             out!(
                 "Particles settling across a Poiseuille channel from rest (tau = {:.2} ms), {} threads;",

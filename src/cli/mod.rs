@@ -145,11 +145,22 @@ where
     R: IntoIterator,
     R::Item: AsRef<[u8]>,
 {
+    emit_csv(|writer| {
+        writer.write_record(header)?;
+        rows.into_iter().try_for_each(|row| writer.write_record(row))
+    })
+}
+
+/// Prints rows whose fields are the CSV's columns: the header from the field names (as in
+/// the JSON), numbers as serde writes them.
+pub fn print_csv_rows<R: serde::Serialize>(rows: &[R]) -> Result<(), Error> {
+    emit_csv(|writer| rows.iter().try_for_each(|row| writer.serialize(row)))
+}
+
+/// Runs `write` on a CSV writer and prints what it wrote.
+fn emit_csv(write: impl FnOnce(&mut csv::Writer<Vec<u8>>) -> csv::Result<()>) -> Result<(), Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
-    writer.write_record(header).map_err(|e| e.to_string())?;
-    for row in rows {
-        writer.write_record(row).map_err(|e| e.to_string())?;
-    }
+    write(&mut writer).map_err(|e| e.to_string())?;
     let bytes = writer.into_inner().map_err(|e| e.to_string())?;
     let text = String::from_utf8(bytes).map_err(|e| e.to_string())?;
     out!("{}", text.trim_end_matches('\n'));

@@ -4,7 +4,7 @@ use clap::Args;
 use depo::wall_model::{WallLaw, PRESETS};
 use serde::Serialize;
 
-use super::{print_csv, Error, Format};
+use super::{print_csv_rows, Error, Format};
 
 #[derive(Args, Debug)]
 pub struct PresetsArgs {
@@ -58,44 +58,7 @@ pub fn run(args: &PresetsArgs) -> Result<(), Error> {
         .collect();
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
-        Format::Csv => {
-            let opt = |x: Option<f64>| x.map(|x| x.to_string()).unwrap_or_default();
-            let header = [
-                "id",
-                "source",
-                "particle",
-                "surface",
-                "k",
-                "kappa",
-                "vc",
-                "p",
-                "q",
-                "mu",
-                "restitution_at_vc",
-                "table_last_column",
-                "reconstructed",
-            ];
-            print_csv(
-                &header,
-                rows.iter().map(|r| {
-                    [
-                        r.id.to_string(),
-                        r.source.to_string(),
-                        r.particle.to_string(),
-                        r.surface.to_string(),
-                        r.k.to_string(),
-                        r.kappa.to_string(),
-                        r.vc.to_string(),
-                        r.p.to_string(),
-                        r.q.to_string(),
-                        r.mu.to_string(),
-                        opt(r.restitution_at_vc),
-                        opt(r.table_last_column),
-                        r.reconstructed.to_string(),
-                    ]
-                }),
-            )?;
-        }
+        Format::Csv => print_csv_rows(&rows)?,
         Format::Table => {
             out!(
                 "{:<21} {:>7} {:>6} {:>6} {:>4} {:>6} {:>6}  {:<34} {:<30} source",
