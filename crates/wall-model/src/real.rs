@@ -85,6 +85,10 @@ pub trait Real:
     /// the bound is set by rounding, not by the polynomials: `log2 x` and `y log2 x` are each
     /// rounded to 24 bits, which alone allows about 4.3e-6 at `|y log2 x| = 64`.
     const POW_TOLERANCE: f64;
+    /// `self`, a whole number from 0 to 255, as a byte: the low byte of the mantissa of
+    /// `self + 2^52` (`2^23` in `f32`). An add and a narrowing, where `as u8` would clamp
+    /// first; other values give an unspecified byte.
+    fn small_int_to_byte(self) -> u8;
 }
 
 /// Branch-free choice between two values; the kernels use it so that loops vectorise.
@@ -178,6 +182,10 @@ impl Real for f64 {
     const INFINITY: Self = f64::INFINITY;
     const BIG: Self = 1e150;
     const POW_TOLERANCE: f64 = 1e-12;
+    #[inline(always)]
+    fn small_int_to_byte(self) -> u8 {
+        (self + 4_503_599_627_370_496.0).to_bits() as u8
+    }
 
     #[inline(always)]
     fn from_f64(x: f64) -> Self {
@@ -258,6 +266,10 @@ impl Real for f32 {
     const INFINITY: Self = f32::INFINITY;
     const BIG: Self = 1e18;
     const POW_TOLERANCE: f64 = 5e-6;
+    #[inline(always)]
+    fn small_int_to_byte(self) -> u8 {
+        (self + 8_388_608.0).to_bits() as u8
+    }
 
     #[inline(always)]
     fn from_f64(x: f64) -> Self {
@@ -329,6 +341,14 @@ impl Real for f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn small_whole_numbers_become_their_bytes() {
+        for k in 0..=255u8 {
+            assert_eq!(f64::from(k).small_int_to_byte(), k);
+            assert_eq!(f32::from(k).small_int_to_byte(), k);
+        }
+    }
 
     fn rel(a: f64, b: f64) -> f64 {
         if a == b {
