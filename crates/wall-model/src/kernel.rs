@@ -316,7 +316,7 @@ fn sweep<
             // in cache on a Zen 3 core the loops took 5-25 % longer with it. The code is chosen
             // among floats and narrowed to a byte once: chosen among bytes, LLVM narrowed each
             // of the three conditions first (in the f64 friction loop 19 of 86 instructions per
-            // four impacts were packs, extracts and byte blends; now 7 of 81), and the f64
+            // four impacts were packs, extracts and byte blends; then 7 of 81), and the f64
             // friction loops took 7-9 % longer in cache. The code is the largest of three
             // candidates (the codes rise with precedence): nested selects let LLVM move the
             // invalid case after the narrowing, as a byte blend on a narrowed mask. The
