@@ -161,6 +161,9 @@ fn bad_particles_are_flagged_and_untouched_while_the_rest_is_processed() {
         ([0.1, 0.0, -1.0], [0.0; 3], 1e-5, [0.0, 0.0, 1.0002]),
         ([0.1, 0.0, -1.0], [0.0; 3], 1e-5, [nan, 0.0, 1.0]),
         ([0.1, 0.0, 0.5], [0.0; 3], 1e-5, up), // leaving the wall: skipped
+        // Invalid takes precedence over skipped and over captured (0.01 m/s is below vc).
+        ([0.1, 0.0, 0.5], [0.0, nan, 0.0], 1e-5, up),
+        ([0.0, 0.0, -0.01], [0.0; 3], 0.0, up),
         good,
     ];
     let mut soa = Soa::<f64>::from_f64(&rows);
@@ -181,7 +184,7 @@ fn bad_particles_are_flagged_and_untouched_while_the_rest_is_processed() {
             }
         }
     }
-    assert_eq!((tally.rebound, tally.skipped, tally.invalid), (2, 1, 11));
+    assert_eq!((tally.rebound, tally.captured, tally.skipped, tally.invalid), (2, 0, 1, 13));
     assert!((soa.v[2][0] - law.overall_restitution(1.0)).abs() < 1e-15);
     assert_eq!(soa.v[2][0].to_bits(), soa.v[2][last].to_bits());
 }
