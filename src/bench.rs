@@ -27,6 +27,20 @@ pub enum Precision {
     F32,
 }
 
+/// The wall of a benchmark, and how the kernel is given its normal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Wall {
+    /// The floor, normal `+z`, one for the batch: the loop for walls along a coordinate axis,
+    /// as in rooms and channels.
+    Axis,
+    /// The normal `(0.6, 0, 0.8)`, one for the batch: the general loop.
+    Tilted,
+    /// The same tilted wall with its normal stored once per particle, as a host solver passes
+    /// the normals of the faces its particles hit: three more arrays to read, and each normal
+    /// checked for unit length.
+    PerParticle,
+}
+
 /// One kernel configuration to time.
 #[derive(Clone, Copy, Debug)]
 pub struct Scenario {
@@ -39,9 +53,8 @@ pub struct Scenario {
     pub friction: bool,
     /// Whether a tally (counts and energy) is kept.
     pub tally: bool,
-    /// The wall normal `(0.6, 0, 0.8)` instead of `+z`: the general loop rather than the one
-    /// for walls along a coordinate axis.
-    pub tilted: bool,
+    /// The wall the impacts hit, and how its normal is given.
+    pub wall: Wall,
     /// Number of impacts per call.
     pub n: usize,
 }
@@ -68,7 +81,11 @@ impl Scenario {
             if self.spin { " spin" } else { "" }
         ) + if self.friction { "" } else { " mu=0" }
             + if self.tally { " tally" } else { "" }
-            + if self.tilted { " tilted" } else { "" }
+            + match self.wall {
+                Wall::Axis => "",
+                Wall::Tilted => " tilted",
+                Wall::PerParticle => " normals",
+            }
     }
 
     /// The law used: the li1997-sio2 constants with the scenario's exponents and friction 0.3
@@ -123,13 +140,15 @@ impl Measurement {
             Precision::F32 => 4,
         };
         let arrays = if self.scenario.spin { 6 * 2 + 1 } else { 3 * 2 };
-        arrays * size + 1
+        let normals = if self.scenario.wall == Wall::PerParticle { 3 } else { 0 };
+        (arrays + normals) * size + 1
     }
 }
 
 /// Structure-of-arrays particle state owned by a benchmark: random impacts on a floor
-/// (normal +z) or a tilted wall, normal speeds log-uniform over 0.01..10 m/s (both sides of the
-/// law's `vc`), tangential speeds up to 1 m/s, spins up to 1e4 rad/s, radii 10..100 um.
+/// (normal +z) or a tilted wall (its normal given once, or once per particle), normal speeds
+/// log-uniform over 0.01..10 m/s (both sides of the law's `vc`), tangential speeds up to
+/// 1 m/s, spins up to 1e4 rad/s, radii 10..100 um.
 pub struct Workload<T> {
     /// Velocity components, m/s.
     pub v: [Vec<T>; 3],
@@ -141,6 +160,9 @@ pub struct Workload<T> {
     pub outcome: Vec<Outcome>,
     /// The wall normal of the whole batch.
     pub normal: [T; 3],
+    /// The wall normal once per particle, three components (empty unless the scenario's wall
+    /// is [`Wall::PerParticle`]).
+    pub normals: [Vec<T>; 3],
 }
 
 impl<T: Real> Workload<T> {
@@ -163,7 +185,14 @@ impl<T: Real> Workload<T> {
             spin_column(&mut |r| r.random_range(-1e4..1e4)),
         ];
         let radius = spin_column(&mut |r| r.random_range(1e-5..1e-4));
-        Self { v: [vx, vy, vz], w, radius, outcome: vec![Outcome::default(); n], normal: [T::ZERO, T::ZERO, T::ONE] }
+        Self {
+            v: [vx, vy, vz],
+            w,
+            radius,
+            outcome: vec![Outcome::default(); n],
+            normal: [T::ZERO, T::ZERO, T::ONE],
+            normals: Default::default(),
+        }
     }
 
     /// The same impacts against the wall with normal `(0.6, 0, 0.8)`: velocities and spins
@@ -182,14 +211,19 @@ impl<T: Real> Workload<T> {
         self
     }
 
-    /// The workload of `scenario`: [`Workload::random`], tilted if the scenario says so.
+    /// The workload of `scenario`: [`Workload::random`], tilted if the scenario says so, with
+    /// the tilted normal copied to every particle for [`Wall::PerParticle`].
     #[must_use]
     pub fn for_scenario(scenario: &Scenario, seed: u64) -> Self {
         let work = Self::random(scenario.n, scenario.spin, seed);
-        if scenario.tilted {
-            work.tilted()
-        } else {
-            work
+        match scenario.wall {
+            Wall::Axis => work,
+            Wall::Tilted => work.tilted(),
+            Wall::PerParticle => {
+                let mut work = work.tilted();
+                work.normals = work.normal.map(|c| vec![c; scenario.n]);
+                work
+            }
         }
     }
 
@@ -204,8 +238,13 @@ impl<T: Real> Workload<T> {
     /// Applies `law` to the whole workload, with a tally when `tally`.
     pub fn law_kernel(&mut self, law: &WallLaw, tally: bool) {
         let [vx, vy, vz] = &mut self.v;
-        let batch =
-            Impacts::new([vx, vy, vz], Normals::Uniform(self.normal), &mut self.outcome).expect("consistent arrays");
+        let normals = if self.normals[0].is_empty() {
+            Normals::Uniform(self.normal)
+        } else {
+            let [nx, ny, nz] = &self.normals;
+            Normals::PerParticle([nx, ny, nz])
+        };
+        let batch = Impacts::new([vx, vy, vz], normals, &mut self.outcome).expect("consistent arrays");
         let batch = if self.radius.is_empty() {
             batch
         } else {
@@ -222,13 +261,16 @@ impl<T: Real> Workload<T> {
     pub fn copy_kernel(&mut self) {
         let [vx, vy, vz] = &mut self.v;
         let [wx, wy, wz] = &mut self.w;
+        let [nx, ny, nz] = &self.normals;
         let outcome: &mut [u8] = bytemuck::cast_slice_mut(&mut self.outcome);
+        let normals = |k: usize| (!nx.is_empty()).then(|| [&nx[k..], &ny[k..], &nz[k..]]);
         if self.radius.is_empty() {
             vx.par_chunks_mut(LEAF)
                 .zip(vy.par_chunks_mut(LEAF))
                 .zip(vz.par_chunks_mut(LEAF))
                 .zip(outcome.par_chunks_mut(LEAF))
-                .for_each(|(((a, b), c), o)| copy_piece([a, b, c], None, o));
+                .enumerate()
+                .for_each(|(k, (((a, b), c), o))| copy_piece([a, b, c], None, normals(k * LEAF), o));
         } else {
             let radius = &self.radius;
             vx.par_chunks_mut(LEAF)
@@ -236,43 +278,70 @@ impl<T: Real> Workload<T> {
                 .zip(vz.par_chunks_mut(LEAF))
                 .zip(wx.par_chunks_mut(LEAF).zip(wy.par_chunks_mut(LEAF)).zip(wz.par_chunks_mut(LEAF)))
                 .zip(radius.par_chunks(LEAF).zip(outcome.par_chunks_mut(LEAF)))
-                .for_each(|((((a, b), c), ((d, e), f)), (r, o))| copy_piece([a, b, c], Some(([d, e, f], r)), o));
+                .enumerate()
+                .for_each(|(k, ((((a, b), c), ((d, e), f)), (r, o)))| {
+                    copy_piece([a, b, c], Some(([d, e, f], r)), normals(k * LEAF), o)
+                });
         }
     }
 }
 
-/// One piece of the copy kernel: negates every velocity and spin component, scales one spin
-/// component by the radius (so the radius is read) and writes the outcome byte. Compiled for
-/// the same instruction sets as the law kernel (a baseline-only build, 128-bit vectors, timed
-/// below the law kernel's AVX-512 build), with every slice cut to one length so that the loop
-/// needs no bounds checks: the ceiling must be the fastest way to move these bytes, or a law
-/// kernel could time above it.
+/// One piece of the copy kernel: negates every velocity component (or, with a normal per
+/// particle, subtracts it from the normal's component, so the normals are read), negates two
+/// spin components and scales the third by the radius (so the radius is read), and writes the
+/// outcome byte. Compiled for the same instruction sets as the law kernel (a baseline-only
+/// build, 128-bit vectors, timed below the law kernel's AVX-512 build), with every slice cut
+/// to one length so that the loop needs no bounds checks: the ceiling must be the fastest way
+/// to move these bytes, or a law kernel could time above it.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx512dq+avx512bw", "x86_64+avx2+fma"))]
-fn copy_piece<T: Real>(v: [&mut [T]; 3], spin: Option<([&mut [T]; 3], &[T])>, outcome: &mut [u8]) {
-    let n = outcome.len();
+fn copy_piece<T: Real>(
+    v: [&mut [T]; 3],
+    spin: Option<([&mut [T]; 3], &[T])>,
+    normals: Option<[&[T]; 3]>,
+    outcome: &mut [u8],
+) {
+    match (spin, normals) {
+        (None, None) => copy_loop::<T, false, false>(v, [&mut [], &mut [], &mut []], &[], [&[]; 3], outcome),
+        (None, Some(n)) => copy_loop::<T, false, true>(v, [&mut [], &mut [], &mut []], &[], n, outcome),
+        (Some((w, r)), None) => copy_loop::<T, true, false>(v, w, r, [&[]; 3], outcome),
+        (Some((w, r)), Some(n)) => copy_loop::<T, true, true>(v, w, r, n, outcome),
+    }
+}
+
+/// The loop of [`copy_piece`] for one combination of spin arrays and per-particle normals.
+#[inline(always)]
+fn copy_loop<T: Real, const SPIN: bool, const NORMALS: bool>(
+    v: [&mut [T]; 3],
+    w: [&mut [T]; 3],
+    radius: &[T],
+    normals: [&[T]; 3],
+    outcome: &mut [u8],
+) {
+    // Arrays a variant does not use are empty and stay so.
+    let len = outcome.len();
     let [vx, vy, vz] = v;
-    let (vx, vy, vz) = (&mut vx[..n], &mut vy[..n], &mut vz[..n]);
-    match spin {
-        None => {
-            for i in 0..n {
-                vx[i] = -vx[i];
-                vy[i] = -vy[i];
-                vz[i] = -vz[i];
-                outcome[i] = 1;
-            }
+    let (vx, vy, vz) = (&mut vx[..len], &mut vy[..len], &mut vz[..len]);
+    let [wx, wy, wz] = w;
+    let (wx, wy, wz, radius) =
+        if SPIN { (&mut wx[..len], &mut wy[..len], &mut wz[..len], &radius[..len]) } else { (wx, wy, wz, radius) };
+    let [nx, ny, nz] = normals;
+    let (nx, ny, nz) = if NORMALS { (&nx[..len], &ny[..len], &nz[..len]) } else { (nx, ny, nz) };
+    for i in 0..len {
+        if NORMALS {
+            vx[i] = nx[i] - vx[i];
+            vy[i] = ny[i] - vy[i];
+            vz[i] = nz[i] - vz[i];
+        } else {
+            vx[i] = -vx[i];
+            vy[i] = -vy[i];
+            vz[i] = -vz[i];
         }
-        Some(([wx, wy, wz], radius)) => {
-            let (wx, wy, wz, radius) = (&mut wx[..n], &mut wy[..n], &mut wz[..n], &radius[..n]);
-            for i in 0..n {
-                vx[i] = -vx[i];
-                vy[i] = -vy[i];
-                vz[i] = -vz[i];
-                wx[i] = wx[i] * radius[i];
-                wy[i] = -wy[i];
-                wz[i] = -wz[i];
-                outcome[i] = 1;
-            }
+        if SPIN {
+            wx[i] = wx[i] * radius[i];
+            wy[i] = -wy[i];
+            wz[i] = -wz[i];
         }
+        outcome[i] = 1;
     }
 }
 
@@ -347,7 +416,7 @@ pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
                     spin,
                     friction: true,
                     tally: false,
-                    tilted: false,
+                    wall: Wall::Axis,
                     n,
                 });
             }
@@ -363,19 +432,31 @@ pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
                 spin: false,
                 friction: false,
                 tally: false,
-                tilted: false,
+                wall: Wall::Axis,
                 n,
             });
         }
     }
     for precision in [Precision::F64, Precision::F32] {
         let (exponents, power) = ((1.0, 0.5), PowerMode::Fast);
-        out.push(Scenario { precision, exponents, power, spin: false, friction: true, tally: true, tilted: false, n });
+        out.push(Scenario {
+            precision,
+            exponents,
+            power,
+            spin: false,
+            friction: true,
+            tally: true,
+            wall: Wall::Axis,
+            n,
+        });
     }
-    // The general loop, for a wall that is not along a coordinate axis.
-    for spin in [false, true] {
-        let (precision, exponents, power) = (Precision::F64, (1.0, 0.5), PowerMode::Fast);
-        out.push(Scenario { precision, exponents, power, spin, friction: true, tally: false, tilted: true, n });
+    // The general loop, for a wall that is not along a coordinate axis, its normal given once
+    // for the batch or once per particle.
+    for wall in [Wall::Tilted, Wall::PerParticle] {
+        for spin in [false, true] {
+            let (precision, exponents, power) = (Precision::F64, (1.0, 0.5), PowerMode::Fast);
+            out.push(Scenario { precision, exponents, power, spin, friction: true, tally: false, wall, n });
+        }
     }
     out
 }
@@ -424,13 +505,30 @@ mod tests {
 
     /// The ceiling means something only if the copy kernel reads and writes every element of
     /// every array the law kernel touches, across piece boundaries and in both precisions.
-    fn copy_kernel_touches_everything<T: Real>(spin: bool) {
+    fn copy_kernel_touches_everything<T: Real>(spin: bool, per_particle_normals: bool) {
         let n = 3 * LEAF + 17;
-        let pristine = Workload::<T>::random(n, spin, 5);
-        let mut work = Workload::<T>::random(n, spin, 5);
+        let workload = || {
+            let mut work = Workload::<T>::random(n, spin, 5);
+            if per_particle_normals {
+                // A different value for every particle, so that a piece reading another
+                // piece's normals would show.
+                work.normals = [1.0, 2.0, 3.0].map(|c| (0..n).map(|i| T::from_f64(c + i as f64 / 1024.0)).collect());
+            }
+            work
+        };
+        let pristine = workload();
+        let mut work = workload();
         work.copy_kernel();
         for k in 0..3 {
-            assert!(work.v[k].iter().zip(&pristine.v[k]).all(|(&x, &x0)| x == -x0), "velocity {k}");
+            let expected = |i: usize| {
+                let x0 = pristine.v[k][i];
+                if per_particle_normals {
+                    pristine.normals[k][i] - x0
+                } else {
+                    -x0
+                }
+            };
+            assert!(work.v[k].iter().enumerate().all(|(i, &x)| x == expected(i)), "velocity {k}");
         }
         if spin {
             let scaled = work.w[0].iter().zip(&pristine.w[0]).zip(&pristine.radius);
@@ -445,8 +543,10 @@ mod tests {
     #[test]
     fn the_copy_kernel_reads_and_writes_every_element() {
         for spin in [false, true] {
-            copy_kernel_touches_everything::<f64>(spin);
-            copy_kernel_touches_everything::<f32>(spin);
+            for per_particle_normals in [false, true] {
+                copy_kernel_touches_everything::<f64>(spin, per_particle_normals);
+                copy_kernel_touches_everything::<f32>(spin, per_particle_normals);
+            }
         }
     }
 }
