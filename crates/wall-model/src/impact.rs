@@ -440,4 +440,27 @@ mod tests {
         assert_eq!(res.velocity[0], 1e200);
         assert_eq!(res.spin, w);
     }
+
+    /// The axis wall folds its sign into the radius and into -5/2 (products with +-1 are
+    /// exact), so its slip and spin after an impulse are the general normal's bits. Values
+    /// with many significant digits, so that a changed rounding would show.
+    #[test]
+    fn an_axis_wall_gives_the_general_normal_s_slip_and_spin_bit_for_bit() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand::rngs::StdRng::seed_from_u64(3);
+        for sign in [1.0f64, -1.0] {
+            let (axis, general) = (AxisNormal { sign }, [0.0, 0.0, sign]);
+            for _ in 0..1000 {
+                let mut draw = || rng.random_range(-1.0..1.0);
+                let (v_t, w) = ([draw(), draw()], [draw() * 1e4, draw() * 1e4, draw() * 1e4]);
+                let (radius, x) = (1e-5 * (1.5 + draw()), [draw(), draw()]);
+                let slip = axis.slip(v_t, w, radius);
+                let general_slip = general.slip([v_t[0], v_t[1], 0.0], w, radius);
+                assert_eq!([slip[0], slip[1]], [general_slip[0], general_slip[1]], "slip, sign {sign}");
+                assert_eq!(general_slip[2], 0.0);
+                let spin = axis.spin_after(w, radius, x);
+                assert_eq!(spin, general.spin_after(w, radius, [x[0], x[1], 0.0]), "spin, sign {sign}");
+            }
+        }
+    }
 }
