@@ -132,6 +132,10 @@ pub trait Frame<T: Real>: Copy {
     fn spin_after(self, w: [T; 3], radius: T, x: Self::Tangent) -> [T; 3];
 }
 
+/// `-5/2` of Eq. (5), `W = w - 5/(2 r) n x (Pt/m)`: the spin a tangential impulse gives a solid
+/// sphere (`I = 2/5 m r^2`), times the radius.
+const SPIN_KICK: f64 = -2.5;
+
 /// Any unit normal.
 impl<T: Real> Frame<T> for [T; 3] {
     type Tangent = [T; 3];
@@ -152,7 +156,7 @@ impl<T: Real> Frame<T> for [T; 3] {
     }
     #[inline(always)]
     fn spin_after(self, w: [T; 3], radius: T, x: [T; 3]) -> [T; 3] {
-        axpy(T::from_f64(-2.5) / radius, cross(self, x), w)
+        axpy(T::from_f64(SPIN_KICK) / radius, cross(self, x), w)
     }
 }
 
@@ -190,7 +194,7 @@ impl<T: Real> Frame<T> for AxisNormal<T> {
     #[inline(always)]
     fn spin_after(self, w: [T; 3], radius: T, x: [T; 2]) -> [T; 3] {
         // (0, 0, s) x (x0, x1, 0) = (-s x1, s x0, 0).
-        let a = (T::from_f64(-2.5) * self.sign) / radius;
+        let a = (T::from_f64(SPIN_KICK) * self.sign) / radius;
         [-(a * x[1]) + w[0], a * x[0] + w[1], w[2]]
     }
 }
