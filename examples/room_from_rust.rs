@@ -7,11 +7,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.05, 600.0); // dt, duration (s)
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
+    scene.average_from = 60.0; // averages over [60 s, 600 s]
     scene.walls[0] = WallBehaviour::Law { law: WallLaw::preset("dunn1995-copper")?, size: None }; // the floor
     let particles = Injection::new(10_000, SizeDistribution::LogNormal { median: 1e-6, geometric_sd: 2.0 }, 1500.0);
     let result = run(&scene, &particles)?; // on the current rayon pool
-    let floor = result.deposition_velocity(&[0], 60.0, 600.0); // v_d onto the floor, m/s
-    let beta = result.loss_rate(60.0, 600.0); // 1/s
+    let floor = result.deposition_velocity(&[0]); // v_d onto the floor, m/s
+    let beta = result.loss_rate(); // 1/s
     let balance = result.balance();
     println!(
         "floor v_d {:.2e} +- {:.1e} m/s ({} deposits), beta {:.3} 1/h, {} of {} particles airborne after {} s",

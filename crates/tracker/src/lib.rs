@@ -43,6 +43,7 @@
 pub mod air;
 pub mod convergence;
 pub mod correlations;
+pub mod excursions;
 pub mod flow;
 pub mod geometry;
 mod noise;
@@ -52,8 +53,9 @@ pub mod studies;
 mod track;
 
 pub use air::{Aerodynamics, Air};
+pub use excursions::{Excursions, Splitting};
 pub use flow::Flow;
 pub use geometry::{Geometry, Orientation, Wall};
 pub use run::{run, Balance, Estimate, Run};
 pub use scene::{Drag, Injection, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
-pub use track::{Fate, Record, WallTally, MAX_CONTACTS};
+pub use track::{Fate, ParticleTally, Record, WallTally, MAX_CONTACTS};

@@ -51,6 +51,12 @@ pub(crate) fn particle_rng(seed: u64, id: u64) -> Xoshiro256PlusPlus {
     Xoshiro256PlusPlus::seed_from_u64(splitmix(seed ^ splitmix(id.wrapping_add(0x5851_f42d_4c95_7f2d))))
 }
 
+/// The random stream of copy number `copy` (from 1) of particle `id` under importance
+/// splitting: independent of the particle's own stream and of its other copies'.
+pub(crate) fn branch_rng(seed: u64, id: u64, copy: u64) -> Xoshiro256PlusPlus {
+    particle_rng(seed ^ splitmix(copy ^ 0x2545_f491_4f6c_dd1d), id)
+}
+
 /// SplitMix64's finaliser: a bijective mix of 64 bits.
 fn splitmix(mut z: u64) -> u64 {
     z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);

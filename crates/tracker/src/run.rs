@@ -6,18 +6,24 @@
 //! and the chunks' tallies are summed in chunk order. The same seed therefore gives the same
 //! run, bit for bit, on any number of threads.
 //!
-//! ## Deposition velocity
-//! `v_d = J / C`: the deposits on a set of walls per unit area and time over a window, divided by
-//! the mean airborne concentration over that window. Here `C` is the number of airborne
-//! particles integrated over the window (particle-seconds, [`Run::exposure`]) over the window
-//! length and the volume: the well-mixed definition a room's or a channel's loss rate uses.
-//! Its standard error is taken as Poisson, `v_d / sqrt(N)` for `N` deposits.
+//! ## Deposition velocity and its error
+//! `v_d = J / C`: the deposits on a set of walls per unit area and time over the averaging
+//! window, divided by the mean airborne concentration over that window. Here `C` is the
+//! airborne particle-seconds within the window (the exposure) over the window's length and the
+//! volume: the well-mixed definition a room's or a channel's loss rate uses. With near-wall
+//! [`Excursions`](crate::Excursions) the deposits are the excursions' weighted ones.
+//!
+//! The estimate is a ratio of two sums over the injected particles, `R = sum X_i / sum E_i`
+//! (`X_i` a particle's deposits, `E_i` its exposure), and its standard error is the delta
+//! method's over the independent particles, `sqrt(n / (n - 1) sum (X_i - R E_i)^2) / sum E_i`.
+//! For plain tracking with rare deposits this is the familiar `v_d / sqrt(N)` for `N`
+//! deposits.
 
 use rayon::prelude::*;
 
 use crate::geometry::{Orientation, Wall};
 use crate::scene::{Injection, Scene, SceneError};
-use crate::track::{track, Fate, Prepared, Record, WallTally};
+use crate::track::{track, track_excursions, Fate, ParticleTally, Prepared, Record, WallTally};
 
 /// Particles per chunk of work (fixed, so the sums do not depend on the thread count).
 const CHUNK: usize = 256;
@@ -27,25 +33,46 @@ pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
     scene.validate(injection)?;
     let prepared = Prepared::new(scene, injection);
     let wall_count = prepared.walls.len();
-    let chunks: Vec<(Vec<Record>, Vec<WallTally>)> = (0..injection.count.div_ceil(CHUNK))
+    let window = prepared.window;
+    let chunks: Vec<(Vec<Record>, Vec<ParticleTally>, Vec<WallTally>)> = (0..injection.count.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
             let mut tally = vec![WallTally::default(); wall_count];
             let ids = c * CHUNK..((c + 1) * CHUNK).min(injection.count);
-            let records = track(&prepared, ids, &mut tally);
-            (records, tally)
+            let (records, particles) = match &scene.excursions {
+                Some(excursions) => track_excursions(&prepared, excursions, ids, &mut tally),
+                None => {
+                    let records = track(&prepared, ids, &mut tally);
+                    let particles = records.iter().map(|r| ParticleTally::of(r, window)).collect();
+                    (records, particles)
+                }
+            };
+            (records, particles, tally)
         })
         .collect();
     let mut records = Vec::with_capacity(injection.count);
+    let mut particles = Vec::with_capacity(injection.count);
     let mut tallies = vec![WallTally::default(); wall_count];
-    for (r, t) in chunks {
+    for (r, p, t) in chunks {
         records.extend(r);
+        particles.extend(p);
         for (sum, x) in tallies.iter_mut().zip(t) {
             *sum += x;
         }
     }
     let duration = prepared.steps as f64 * scene.dt;
-    Ok(Run { records, tallies, walls: prepared.walls, volume: scene.geometry.volume(), duration })
+    let smallest_weight =
+        scene.excursions.as_ref().map_or(1.0, |e| e.splitting.weight(e.splitting.levels.len()) / e.sampling);
+    Ok(Run {
+        records,
+        particles,
+        tallies,
+        walls: prepared.walls,
+        volume: scene.geometry.volume(),
+        duration,
+        window,
+        smallest_weight,
+    })
 }
 
 /// A value with its standard error.
@@ -53,10 +80,36 @@ pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
 pub struct Estimate {
     /// The value.
     pub value: f64,
-    /// Its standard error.
+    /// Its standard error (one standard deviation of the estimate over the run's randomness).
     pub error: f64,
-    /// The number of events it rests on.
+    /// The number of deposit events it rests on.
     pub events: usize,
+    /// With no event, a 95 % upper bound on the value: what three events of the smallest
+    /// weight a deposit can have would give (the rule of three for a Poisson count); the value
+    /// itself plus two standard errors otherwise.
+    pub upper_bound: f64,
+}
+
+impl Estimate {
+    /// The ratio `sum x_i / sum e_i` over independent samples `(x_i, e_i)` times `scale`, with
+    /// the delta method's standard error; `events` deposits, `unit` the smallest weight one
+    /// can carry.
+    fn ratio(samples: impl Iterator<Item = (f64, f64)> + Clone, scale: f64, events: usize, unit: f64) -> Self {
+        let (mut n, mut sx, mut se) = (0usize, 0.0, 0.0);
+        for (x, e) in samples.clone() {
+            n += 1;
+            sx += x;
+            se += e;
+        }
+        if se.is_nan() || se <= 0.0 || n < 2 {
+            return Self { value: 0.0, error: 0.0, events, upper_bound: f64::INFINITY };
+        }
+        let r = sx / se;
+        let spread: f64 = samples.map(|(x, e)| (x - r * e).powi(2)).sum();
+        let error = (spread * n as f64 / (n - 1) as f64).sqrt() / se;
+        let upper_bound = if events == 0 { 3.0 * unit / se } else { r + 2.0 * error };
+        Self { value: r * scale, error: error * scale, events, upper_bound: upper_bound * scale }
+    }
 }
 
 /// Where the injected particles are at the end: the mass balance of a run.
@@ -70,7 +123,7 @@ pub struct Balance {
     pub deposited: Vec<usize>,
     /// Escaped.
     pub escaped: usize,
-    /// Masses (kg): injected, airborne, per wall, escaped.
+    /// Injected mass, kg.
     pub injected_mass: f64,
     /// Airborne mass, kg.
     pub airborne_mass: f64,
@@ -85,6 +138,8 @@ pub struct Balance {
 pub struct Run {
     /// One record per particle, in injection order.
     pub records: Vec<Record>,
+    /// What each injected particle contributed to the window's statistics, in injection order.
+    pub particles: Vec<ParticleTally>,
     /// Impact statistics per wall.
     pub tallies: Vec<WallTally>,
     /// The walls, in id order.
@@ -93,6 +148,10 @@ pub struct Run {
     pub volume: f64,
     /// Simulated time, s.
     pub duration: f64,
+    /// The averaging window, s.
+    pub window: [f64; 2],
+    /// The smallest weight a deposit can carry (1 without excursions).
+    pub smallest_weight: f64,
 }
 
 impl Run {
@@ -135,19 +194,25 @@ impl Run {
         b
     }
 
-    /// Airborne particle-seconds within `[from, to]` (s).
+    /// Deposition velocity onto `walls` over the averaging window (m/s; see the module docs).
     #[must_use]
-    pub fn exposure(&self, from: f64, to: f64) -> f64 {
-        self.records.iter().map(|r| (r.time.min(to) - from).max(0.0)).sum()
+    pub fn deposition_velocity(&self, walls: &[usize]) -> Estimate {
+        let area: f64 = walls.iter().map(|&w| self.walls[w].area).sum();
+        let events = self.particles.iter().map(|p| walls.iter().map(|&w| p.events[w] as usize).sum::<usize>()).sum();
+        let samples = self.particles.iter().map(|p| (walls.iter().map(|&w| p.deposited[w]).sum::<f64>(), p.exposure));
+        let scale = if area > 0.0 { self.volume / area } else { 0.0 };
+        Estimate::ratio(samples, scale, events, self.smallest_weight)
     }
 
-    /// Deposits on `walls` within `[from, to]`.
+    /// Loss-rate coefficient `beta = sum(v_d A) / V` over the averaging window, 1/s: the
+    /// first-order rate at which deposition removes airborne particles.
     #[must_use]
-    pub fn deposits(&self, walls: &[usize], from: f64, to: f64) -> usize {
-        self.records
-            .iter()
-            .filter(|r| matches!(r.fate, Fate::Deposited(w) if walls.contains(&w)) && r.time >= from && r.time <= to)
-            .count()
+    pub fn loss_rate(&self) -> Estimate {
+        let all: Vec<usize> = (0..self.walls.len()).collect();
+        let v = self.deposition_velocity(&all);
+        let area: f64 = self.walls.iter().map(|w| w.area).sum();
+        let k = area / self.volume;
+        Estimate { value: v.value * k, error: v.error * k, events: v.events, upper_bound: v.upper_bound * k }
     }
 
     /// The walls of one orientation.
@@ -156,29 +221,9 @@ impl Run {
         self.walls.iter().filter(|w| w.orientation() == orientation).map(|w| w.id).collect()
     }
 
-    /// Deposition velocity onto `walls` over `[from, to]` (m/s; see the module docs).
-    #[must_use]
-    pub fn deposition_velocity(&self, walls: &[usize], from: f64, to: f64) -> Estimate {
-        let n = self.deposits(walls, from, to);
-        let area: f64 = walls.iter().map(|&w| self.walls[w].area).sum();
-        let concentration_time = self.exposure(from, to) / self.volume;
-        let value = if concentration_time > 0.0 && area > 0.0 { n as f64 / (area * concentration_time) } else { 0.0 };
-        Estimate { value, error: value / (n.max(1) as f64).sqrt(), events: n }
-    }
-
-    /// Loss-rate coefficient `beta = sum(v_d A) / V` over `[from, to]`, 1/s: the first-order rate
-    /// at which deposition removes airborne particles.
-    #[must_use]
-    pub fn loss_rate(&self, from: f64, to: f64) -> Estimate {
-        let all: Vec<usize> = (0..self.walls.len()).collect();
-        let n = self.deposits(&all, from, to);
-        let exposure = self.exposure(from, to);
-        let value = if exposure > 0.0 { n as f64 / exposure } else { 0.0 };
-        Estimate { value, error: value / (n.max(1) as f64).sqrt(), events: n }
-    }
-
-    /// Deposition map of one wall: counts on a `bins[0] x bins[1]` grid over its two
-    /// in-plane axes (in the order x, y, z without the wall's own axis), row-major.
+    /// Deposition map of one wall: the tracked particles' deposits over the whole run on a
+    /// `bins[0] x bins[1]` grid over its two in-plane axes (in the order x, y, z without the
+    /// wall's own axis), row-major.
     #[must_use]
     pub fn deposition_map(&self, wall: usize, size: [f64; 3], bins: [usize; 2]) -> Vec<u32> {
         let axis = self.walls[wall].axis;

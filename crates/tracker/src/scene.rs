@@ -6,6 +6,7 @@ use std::fmt;
 use depo_wall_model::{SizeDependence, WallLaw};
 
 use crate::air::{Air, STANDARD_GRAVITY};
+use crate::excursions::Excursions;
 use crate::flow::Flow;
 use crate::geometry::Geometry;
 
@@ -125,6 +126,12 @@ pub struct Scene {
     /// Keep the well-mixed drift of the dispersion model (on by default; off only to show what
     /// it is for).
     pub drift_correction: bool,
+    /// Start of the averaging window of the run's deposition velocities and loss rates, s (the
+    /// window ends with the run): what comes before lets the near-wall layers form.
+    pub average_from: f64,
+    /// Near-wall excursions, for deposition rates too small to resolve by plain tracking;
+    /// `None` (the default) counts the tracked particles' own deposits.
+    pub excursions: Option<Excursions>,
 }
 
 impl Scene {
@@ -147,6 +154,8 @@ impl Scene {
             duration,
             seed: 1,
             drift_correction: true,
+            average_from: 0.0,
+            excursions: None,
         }
     }
 
@@ -179,6 +188,19 @@ impl Scene {
         positive("dt", self.dt)?;
         if !(self.duration.is_finite() && self.duration >= 0.0) {
             return Err(SceneError::new("duration", self.duration, "must be finite and not negative"));
+        }
+        if !(self.average_from.is_finite()
+            && self.average_from >= 0.0
+            && self.average_from < self.duration.max(f64::MIN_POSITIVE))
+        {
+            return Err(SceneError::new(
+                "average_from",
+                self.average_from,
+                "must be finite, not negative and before the end of the run",
+            ));
+        }
+        if let Some(excursions) = &self.excursions {
+            excursions.validate()?;
         }
         if self.walls.len() != self.geometry.walls().len() {
             return Err(SceneError::new("walls", self.walls.len() as f64, "must give one behaviour per wall"));
@@ -283,7 +305,7 @@ pub struct SceneError {
 }
 
 impl SceneError {
-    fn new(field: &str, value: f64, requirement: &'static str) -> Self {
+    pub(crate) fn new(field: &str, value: f64, requirement: &'static str) -> Self {
         Self { field: field.to_string(), value, requirement }
     }
 }

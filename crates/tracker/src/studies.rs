@@ -75,8 +75,8 @@ pub struct RoomPoint {
     /// [`MAP_BINS`] grid over the wall's two in-plane axes in the order x, y, z (rows, columns):
     /// the floor's over x and y, the `x0`/`x1` walls' over y and z.
     pub maps: Vec<Vec<u32>>,
-    /// Deposited count and mass (kg) over the whole run onto the floor, the ceiling and the
-    /// vertical walls.
+    /// Deposited count and mass (kg) of the tracked particles over the whole run onto the
+    /// floor, the ceiling and the vertical walls.
     pub deposited: [(usize, f64); 3],
 }
 
@@ -100,9 +100,10 @@ impl RoomStudy {
         let mut points = Vec::new();
         for (i, &d) in self.diameters.iter().enumerate() {
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
-            let result = run(&self.scene, &injection)?;
-            let (from, to) = (self.transient * result.duration, result.duration);
-            let v = |o| result.deposition_velocity(&result.walls_facing(o), from, to);
+            let mut scene = self.scene.clone();
+            scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
+            let result = run(&scene, &injection)?;
+            let v = |o| result.deposition_velocity(&result.walls_facing(o));
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             let balance = result.balance();
             points.push(RoomPoint {
@@ -110,7 +111,7 @@ impl RoomStudy {
                 floor: v(Orientation::Floor),
                 ceiling: v(Orientation::Ceiling),
                 walls: v(Orientation::Wall),
-                beta: result.loss_rate(from, to),
+                beta: result.loss_rate(),
                 model,
                 model_beta: model.loss_rate(size),
                 particle_steps: result.particle_steps(),
@@ -202,16 +203,22 @@ impl ChannelStudy {
         for (i, &tp) in self.tau_plus.iter().enumerate() {
             let d = diameter_for_tau_plus(tp, self.density, air, u_star);
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
-            let result = run(&self.scene, &injection)?;
-            let (from, to) = (self.transient * result.duration, result.duration);
+            let mut scene = self.scene.clone();
+            scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
+            let result = run(&scene, &injection)?;
             let all: Vec<usize> = (0..result.walls.len()).collect();
-            let v = result.deposition_velocity(&all, from, to);
+            let v = result.deposition_velocity(&all);
             let sc = schmidt(d, air);
             points.push(ChannelPoint {
                 tau_plus: tp,
                 diameter: d,
                 schmidt: sc,
-                v_plus: Estimate { value: v.value / u_star, error: v.error / u_star, events: v.events },
+                v_plus: Estimate {
+                    value: v.value / u_star,
+                    error: v.error / u_star,
+                    events: v.events,
+                    upper_bound: v.upper_bound / u_star,
+                },
                 wood: wood(tp, sc),
                 papavergos_hedley: papavergos_hedley(tp, sc),
                 particle_steps: result.particle_steps(),

@@ -61,14 +61,18 @@ use rand::{Rng, RngExt};
 use rand_distr::{Distribution, LogNormal};
 
 use crate::air::{schiller_naumann, Aerodynamics};
+use crate::excursions::Excursions;
 use crate::flow::FlowField;
 use crate::geometry::Wall;
 use crate::noise::{particle_rng, Normals};
 use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution};
 
 mod contacts;
+mod excursions;
 mod fluid;
 mod lanes;
+
+pub use excursions::ParticleTally;
 
 use contacts::{contacts, inside, wrap, AfterContacts, Flight};
 use fluid::{fluid_velocity, fluid_velocity_and_fluctuation, saffman_lift};
@@ -152,6 +156,8 @@ pub(crate) struct Prepared<'a> {
     /// True when some axis is periodic.
     pub periodic: bool,
     pub steps: usize,
+    /// The averaging window `[average_from, end of the run]`, s.
+    pub window: [f64; 2],
 }
 
 impl<'a> Prepared<'a> {
@@ -170,13 +176,14 @@ impl<'a> Prepared<'a> {
             upper: std::array::from_fn(|a| if walled[a] { size[a] } else { f64::INFINITY }),
             periodic: walled.contains(&false),
             steps: scene.steps(),
+            window: [scene.average_from, scene.steps() as f64 * scene.dt],
         }
     }
 }
 
 /// The per-particle constants of a run.
 #[derive(Clone, Copy, Debug)]
-struct Body {
+pub(crate) struct Body {
     aero: Aerodynamics,
     radius: f64,
     /// Gravity with buoyancy, `g (1 - rho/rho_p)`, m/s^2.
@@ -279,7 +286,7 @@ fn wall_distance(c: f64, length: f64) -> (f64, f64) {
 
 /// The particle's state between steps.
 #[derive(Clone, Copy, Debug)]
-struct State {
+pub(crate) struct State {
     x: DVec3,
     v: DVec3,
     zeta: [f64; 3],
@@ -309,6 +316,31 @@ pub(crate) fn track(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [
     }
     macro_rules! dispatch {
         ([$($done:literal)*] []) => { ids.map(|id| run_particle::<$($done),*>(p, id as u64, tally)).collect() };
+        ([$($done:literal)*] [$flag:expr $(, $rest:expr)*]) => {
+            if $flag { dispatch!([$($done)* true] [$($rest),*]) } else { dispatch!([$($done)* false] [$($rest),*]) }
+        };
+    }
+    dispatch!([] [brown, turb, finite_re, euler, lift])
+}
+
+/// Tracks particles `ids` with near-wall `excursions`, adding their wall contacts (not their
+/// excursions') to `tally`: their records and tallies.
+pub(crate) fn track_excursions(
+    p: &Prepared<'_>,
+    excursions: &Excursions,
+    ids: std::ops::Range<usize>,
+    tally: &mut [WallTally],
+) -> (Vec<Record>, Vec<ParticleTally>) {
+    let scene = p.scene;
+    let brown = scene.brownian;
+    let turb = p.field.turbulence.is_some();
+    let finite_re = scene.drag == Drag::SchillerNaumann;
+    let euler = scene.scheme == Scheme::Euler;
+    let lift = scene.lift && p.field.profile.is_some();
+    macro_rules! dispatch {
+        ([$($done:literal)*] []) => {
+            ids.map(|id| excursions::run_with_excursions::<$($done),*>(p, excursions, id as u64, tally)).unzip()
+        };
         ([$($done:literal)*] [$flag:expr $(, $rest:expr)*]) => {
             if $flag { dispatch!([$($done)* true] [$($rest),*]) } else { dispatch!([$($done)* false] [$($rest),*]) }
         };
@@ -371,53 +403,99 @@ fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
     Injected { body, start, x: start, v: v.to_array(), zeta, normals }
 }
 
-fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
-    p: &Prepared<'_>,
-    id: u64,
-    tally: &mut [WallTally],
-) -> Record {
-    let scene = p.scene;
-    let field = &p.field;
-    let dt = scene.dt;
-    let nu = scene.air.kinematic_viscosity();
-    let Injected { mut body, start, x, v, zeta, normals } = inject(p, id, TURB, BROWN);
-    let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
-    let mut draws = StepNormals::new(normals);
-    let (mut x, mut v, mut zeta) = (DVec3::from_array(x), DVec3::from_array(v), zeta);
-    let diameter = body.aero.diameter;
-    let r = body.radius;
-    let base = body;
-    // Saffman's lift per unit relative velocity and root shear rate, (9.69/pi) sqrt(rho mu) /
-    // (rho_p d).
-    let lift_coefficient = 9.69 / std::f64::consts::PI * (scene.air.density * scene.air.viscosity).sqrt()
-        / (p.injection.density * diameter);
+/// What one step did to a particle in flight.
+pub(crate) enum Step {
+    /// Still in the air at the step's end.
+    Airborne,
+    /// Gone within the step: its fate, the time into the step (s) and where.
+    Left(Fate, f64, DVec3),
+}
 
-    let mass = body.aero.mass;
-    let record = |fate: Fate, time: f64, x: DVec3, steps: u64| Record {
-        fate,
-        time,
-        start,
-        position: x.to_array(),
-        diameter,
-        mass,
-        steps,
-    };
+/// One particle in flight: its constants, state and random streams, stepped by
+/// [`Flyer::step`]. `run_particle` carries one through the whole run; near-wall excursions
+/// (`excursions`) copy one where it enters the layer, and again where they split.
+#[derive(Clone)]
+pub(crate) struct Flyer {
+    /// Its constants (with Schiller-Naumann drag, as at the current step).
+    pub body: Body,
+    /// Its constants in Stokes drag.
+    pub base: Body,
+    pub start: [f64; 3],
+    pub x: DVec3,
+    pub v: DVec3,
+    pub zeta: [f64; 3],
+    draws: StepNormals,
+    /// Saffman's lift per unit relative velocity and root shear rate, `(9.69/pi) sqrt(rho mu) /
+    /// (rho_p d)`.
+    lift_coefficient: f64,
+}
 
-    for n in 0..p.steps {
-        let t0 = n as f64 * dt;
-        let z = draws.step(n, per_step);
+impl Flyer {
+    /// Particle `id` as injected.
+    pub fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Self {
+        let Injected { body, start, x, v, zeta, normals } = inject(p, id, turb, brown);
+        let air = &p.scene.air;
+        let lift_coefficient = 9.69 / std::f64::consts::PI * (air.density * air.viscosity).sqrt()
+            / (p.injection.density * body.aero.diameter);
+        Self {
+            body,
+            base: body,
+            start,
+            x: DVec3::from_array(x),
+            v: DVec3::from_array(v),
+            zeta,
+            draws: StepNormals::new(normals),
+            lift_coefficient,
+        }
+    }
+
+    /// The same particle with fresh random streams from `normals`, from step `n` on.
+    pub fn with_streams(&self, normals: Normals, n: usize, per_step: usize) -> Self {
+        Self { draws: StepNormals::starting_at(normals, n, per_step), ..self.clone() }
+    }
+
+    /// The record of this particle's end.
+    pub fn record(&self, fate: Fate, time: f64, at: DVec3, steps: u64) -> Record {
+        Record {
+            fate,
+            time,
+            start: self.start,
+            position: at.to_array(),
+            diameter: self.body.aero.diameter,
+            mass: self.body.aero.mass,
+            steps,
+        }
+    }
+
+    /// Step `n` (from 0, in order) of the run: the fluid velocity seen, the drag relaxation,
+    /// Brownian motion and the wall contacts within the step.
+    #[inline(always)]
+    pub fn step<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
+        &mut self,
+        p: &Prepared<'_>,
+        n: usize,
+        tally: &mut [WallTally],
+    ) -> Step {
+        let scene = p.scene;
+        let field = &p.field;
+        let dt = scene.dt;
+        let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
+        let z = self.draws.step(n, per_step);
+        let (x, v) = (self.x, self.v);
         let uf = if TURB {
-            fluid_velocity_and_fluctuation(field, p.size, x, &mut zeta, [z[0], z[1], z[2]])
+            fluid_velocity_and_fluctuation(field, p.size, x, &mut self.zeta, [z[0], z[1], z[2]])
         } else {
-            fluid_velocity::<false>(field, p.size, x, &zeta)
+            fluid_velocity::<false>(field, p.size, x, &self.zeta)
         };
+        let body = &mut self.body;
         if FINITE_RE {
-            let re = (uf - v).length() * diameter / nu;
-            body.relax_in(base.tau / schiller_naumann(re), dt);
+            let nu = scene.air.kinematic_viscosity();
+            let re = (uf - v).length() * body.aero.diameter / nu;
+            body.relax_in(self.base.tau / schiller_naumann(re), dt);
         }
         let mut v_inf = uf + body.settling;
         if LIFT {
-            v_inf.z += body.tau * saffman_lift(field, p.size, x, uf, v, lift_coefficient);
+            v_inf.z += body.tau * saffman_lift(field, p.size, x, uf, v, self.lift_coefficient);
         }
         let (bx, bv) = if BROWN {
             let mut bx = DVec3::ZERO;
@@ -425,9 +503,8 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
             let z = &z[brownian_start..];
             for a in 0..3 {
                 if EULER {
-                    let za = z[a];
                     // Euler-Maruyama: velocity kick of variance 2 kT/m dt/tau; position from v.
-                    bv[a] = (2.0 * body.thermal_variance * dt / body.tau).sqrt() * za;
+                    bv[a] = (2.0 * body.thermal_variance * dt / body.tau).sqrt() * z[a];
                 } else {
                     (bx[a], bv[a]) = brownian_increment(body.brownian, z[2 * a], z[2 * a + 1]);
                 }
@@ -439,20 +516,37 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
         let flight =
             Flight::<EULER> { x0: x, v0: v, v_inf, tau: body.tau, decay: body.decay, relax: body.relax, dt, bx, bv };
         let (x1, v1) = flight.end();
-        if inside(x1, r, p) {
-            x = wrap(x1, p);
-            v = v1;
-            if !(x.is_finite() && v.is_finite()) {
-                return record(Fate::Escaped, t0 + dt, x, n as u64 + 1);
+        if inside(x1, body.radius, p) {
+            self.x = wrap(x1, p);
+            self.v = v1;
+            if !(self.x.is_finite() && self.v.is_finite()) {
+                return Step::Left(Fate::Escaped, dt, self.x);
             }
-            continue;
+            return Step::Airborne;
         }
-        match contacts::<EULER>(p, &body, flight, State { x, v, zeta }, tally) {
-            AfterContacts::Airborne(s) => (x, v, zeta) = (s.x, s.v, s.zeta),
-            AfterContacts::Left(fate, t, at) => return record(fate, t0 + t, at, n as u64 + 1),
+        match contacts::<EULER>(p, body, flight, State { x, v, zeta: self.zeta }, tally) {
+            AfterContacts::Airborne(s) => {
+                (self.x, self.v, self.zeta) = (s.x, s.v, s.zeta);
+                Step::Airborne
+            }
+            AfterContacts::Left(fate, t, at) => Step::Left(fate, t, at),
         }
     }
-    record(Fate::Airborne, p.steps as f64 * dt, x, p.steps as u64)
+}
+
+fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
+    p: &Prepared<'_>,
+    id: u64,
+    tally: &mut [WallTally],
+) -> Record {
+    let dt = p.scene.dt;
+    let mut flyer = Flyer::inject(p, id, TURB, BROWN);
+    for n in 0..p.steps {
+        if let Step::Left(fate, t, at) = flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, tally) {
+            return flyer.record(fate, n as f64 * dt + t, at, n as u64 + 1);
+        }
+    }
+    flyer.record(Fate::Airborne, p.steps as f64 * dt, flyer.x, p.steps as u64)
 }
 
 /// Where a step's Brownian normals start among its variates, and how many it draws: three for
@@ -468,6 +562,7 @@ fn normals_per_step(turb: bool, brown: bool, euler: bool) -> (usize, usize) {
 }
 
 /// A particle's normal variates for its steps, made [`STEPS_PER_BLOCK`] steps at a time.
+#[derive(Clone)]
 struct StepNormals {
     normals: Normals,
     block: [f64; 9 * STEPS_PER_BLOCK],
@@ -476,6 +571,16 @@ struct StepNormals {
 impl StepNormals {
     fn new(normals: Normals) -> Self {
         Self { normals, block: [0.0; 9 * STEPS_PER_BLOCK] }
+    }
+
+    /// Streams for a particle that starts at step `n` (not necessarily a block's first): the
+    /// block holding step `n` is made now, from `normals`.
+    fn starting_at(mut normals: Normals, n: usize, per_step: usize) -> Self {
+        let mut block = [0.0; 9 * STEPS_PER_BLOCK];
+        if per_step > 0 && n % STEPS_PER_BLOCK != 0 {
+            normals.fill(&mut block[..per_step * STEPS_PER_BLOCK]);
+        }
+        Self { normals, block }
     }
 
     /// The variates of step `n`, its `per_step` ones first (steps taken in order from 0, the

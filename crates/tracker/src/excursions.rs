@@ -1,0 +1,181 @@
+//! Near-wall excursions: a variance-reduction method for deposition rates too small for plain
+//! tracking to resolve, with an estimator that is unbiased for the steady state.
+//!
+//! ## Why
+//! In a room, a 0.1 um particle deposits at about 1e-6 m/s: in half an hour about one particle
+//! in two hundred reaches a surface, so a plain run of 2000 particles counts a handful of
+//! deposits per surface. What decides deposition happens within millimetres of the walls,
+//! where almost none of the tracked particles are; and the Brownian sublayer that limits it
+//! fills over times longer than a run (about `Sc` wall time units thick squared), so even a
+//! long plain run starts far from the steady state that deposition correlations describe.
+//!
+//! ## How
+//! The run tracks its particles plainly: they give the airborne exposure and the steady
+//! stream of *inward crossings* of a near-wall layer of thickness [`Excursions::layer`] (the
+//! distance from a particle's surface to the nearest wall). Each crossing within the averaging
+//! window starts, with probability [`Excursions::sampling`], an *excursion*: a copy of the
+//! particle with fresh random streams, followed until it deposits, leaves the layer again, or
+//! outlives [`Excursions::max_duration`]. Its deposits, weighted `1 / sampling`, are what the
+//! run counts; the plain particle's own deposits are not (it goes on, or ends, as plain
+//! tracking would have it).
+//!
+//! Each excursion's outcome is an unbiased estimate of the probability that a particle
+//! entering the layer in that state deposits before it leaves, so the counted deposits per
+//! unit time estimate, without bias, the steady deposition rate `(entry rate) x (deposition
+//! probability per entry)` (conditional Monte Carlo; the entry states are the plain run's own,
+//! whatever the concentration profile near the wall). A test compares it with plain tracking
+//! where plain tracking reaches the steady state and resolves it.
+//!
+//! Within the layer, excursions are split toward the wall ([`Splitting`]): the distance to
+//! the nearest wall sets a branch's level, each level has a target weight, and after every
+//! step a branch's weight is brought to its level's (a weight window): moving deeper it
+//! *splits* into copies that go on independently, moving out it plays *Russian roulette*,
+//! surviving with probability `w / W` at weight `W`. Both keep the expected weight, so every
+//! weighted sum keeps its expectation (Kahn & Harris 1951; the weight windows of Monte Carlo
+//! neutron transport, Booth & Hendricks 1984): the levels decide only how far the variance
+//! falls per unit of work.
+//!
+//! ## Estimates and their errors
+//! A deposition velocity is a ratio of two sums over the injected particles, deposits
+//! `X_i` (an injected particle's excursions' weighted deposits) over exposure `E_i` (its
+//! airborne time in the window). The particles are independent and identically distributed,
+//! so `R = sum X_i / sum E_i` gets the delta method's standard error
+//! `sqrt(n / (n - 1) sum (X_i - R E_i)^2) / sum E_i`
+//! ([`Run::deposition_velocity`](crate::Run::deposition_velocity)). This is the error bar
+//! every study prints: one standard error of the estimate over the run's own randomness.
+
+use crate::scene::SceneError;
+
+/// Near-wall excursions (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Excursions {
+    /// Thickness of the near-wall layer whose inward crossings start excursions: the distance
+    /// from a particle's surface to the nearest wall, m.
+    pub layer: f64,
+    /// Probability that an inward crossing within the averaging window starts an excursion,
+    /// in `(0, 1]`.
+    pub sampling: f64,
+    /// Longest an excursion is followed, s; beyond it, it counts as having left the layer.
+    pub max_duration: f64,
+    /// Splitting toward the wall within the layer.
+    pub splitting: Splitting,
+}
+
+impl Excursions {
+    /// Checks every field; the error names the first offending one.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        if !(self.layer.is_finite() && self.layer > 0.0) {
+            return Err(SceneError::new("excursions.layer", self.layer, "must be finite and positive"));
+        }
+        if !(self.sampling > 0.0 && self.sampling <= 1.0) {
+            return Err(SceneError::new("excursions.sampling", self.sampling, "must be in (0, 1]"));
+        }
+        if !(self.max_duration.is_finite() && self.max_duration > 0.0) {
+            return Err(SceneError::new("excursions.max_duration", self.max_duration, "must be finite and positive"));
+        }
+        if self.splitting.levels.first().is_some_and(|&d| d > self.layer) {
+            return Err(SceneError::new("splitting.levels", self.splitting.levels[0], "must lie within the layer"));
+        }
+        self.splitting.validate()
+    }
+}
+
+/// Splitting toward the walls within the near-wall layer (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Splitting {
+    /// Distances from the particle's surface to the nearest wall at which the levels start, m,
+    /// strictly decreasing.
+    pub levels: Vec<f64>,
+    /// Copies a particle splits into per level crossed inwards (at least 2).
+    pub factor: u32,
+}
+
+/// The deepest level's weight may not fall below this (a bound on the number of branches a
+/// particle can have, `factor^levels`).
+const SMALLEST_WEIGHT: f64 = 1e-12;
+
+impl Splitting {
+    /// Levels at `outer`, `outer / ratio`, `outer / ratio^2`, ... down to `inner` (m), each
+    /// splitting by `factor`.
+    #[must_use]
+    pub fn geometric(outer: f64, inner: f64, ratio: f64, factor: u32) -> Self {
+        let mut levels = Vec::new();
+        let mut d = outer;
+        while d >= inner * (1.0 - 1e-9) && levels.len() < 64 && ratio > 1.0 {
+            levels.push(d);
+            d /= ratio;
+        }
+        Self { levels, factor }
+    }
+
+    /// Checks the levels and the factor; the error names the field.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        if self.factor < 2 {
+            return Err(SceneError::new("splitting.factor", f64::from(self.factor), "must be at least 2"));
+        }
+        for (i, &d) in self.levels.iter().enumerate() {
+            if !(d.is_finite() && d > 0.0) {
+                return Err(SceneError::new("splitting.levels", d, "must be finite and positive"));
+            }
+            if i > 0 && d >= self.levels[i - 1] {
+                return Err(SceneError::new("splitting.levels", d, "must decrease strictly"));
+            }
+        }
+        if self.weight(self.levels.len()) < SMALLEST_WEIGHT {
+            return Err(SceneError::new(
+                "splitting.levels",
+                self.levels.len() as f64,
+                "are too many for the factor: the deepest weight would fall below 1e-12",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The level of a particle whose surface is `distance` (m) from the nearest wall.
+    #[inline]
+    #[must_use]
+    pub fn level(&self, distance: f64) -> usize {
+        // Few levels, most particles at level 0: a linear scan that usually stops at once.
+        self.levels.iter().take_while(|&&d| distance < d).count()
+    }
+
+    /// The target weight of `level`, `factor^-level`.
+    #[inline]
+    #[must_use]
+    pub fn weight(&self, level: usize) -> f64 {
+        f64::from(self.factor).powi(-(level as i32))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_count_the_distances_passed() {
+        let s = Splitting { levels: vec![0.1, 0.01, 0.001], factor: 3 };
+        assert_eq!(s.level(1.0), 0);
+        assert_eq!(s.level(0.1), 0);
+        assert_eq!(s.level(0.05), 1);
+        assert_eq!(s.level(0.005), 2);
+        assert_eq!(s.level(0.0), 3);
+        assert_eq!(s.weight(2), 1.0 / 9.0);
+        assert!(s.validate().is_ok());
+    }
+
+    #[test]
+    fn geometric_levels_reach_the_inner_distance() {
+        let s = Splitting::geometric(0.1, 1e-4, 10.0, 2);
+        assert_eq!(s.levels.len(), 4);
+        assert!((s.levels[3] - 1e-4).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_splitting_names_the_field() {
+        let bad = |levels: Vec<f64>, factor| Splitting { levels, factor }.validate().unwrap_err().field;
+        assert_eq!(bad(vec![0.1], 1), "splitting.factor");
+        assert_eq!(bad(vec![0.1, 0.2], 2), "splitting.levels");
+        assert_eq!(bad(vec![0.1, f64::NAN], 2), "splitting.levels");
+        assert_eq!(bad((0..50).map(|k| 0.5f64.powi(k)).collect(), 2), "splitting.levels");
+    }
+}

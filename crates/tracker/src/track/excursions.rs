@@ -1,0 +1,213 @@
+//! Plain tracking with near-wall excursions ([`Excursions`]): each injected particle is
+//! tracked as alone, and each of its sampled inward crossings of the near-wall layer starts an
+//! excursion, whose branches (split toward the wall, rouletted on the way out) are taken depth
+//! first. The order, and with it every random number, depends on the particle alone.
+
+use glam::DVec3;
+use rand::rngs::Xoshiro256PlusPlus;
+use rand::RngExt;
+
+use crate::excursions::Excursions;
+use crate::noise::{branch_rng, particle_rng, Normals};
+
+use super::{normals_per_step, Fate, Flyer, Prepared, Record, Step, WallTally};
+
+/// What one injected particle contributed to a run's averaging window.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ParticleTally {
+    /// Airborne time within the averaging window, s.
+    pub exposure: f64,
+    /// Deposits within the averaging window, per wall id: the particle's own without
+    /// excursions, its excursions' weighted deposits with them.
+    pub deposited: [f64; 6],
+    /// Deposit events behind `deposited`, per wall id (unweighted).
+    pub events: [u32; 6],
+}
+
+impl ParticleTally {
+    /// The tally of a particle tracked without excursions, from its record: in the air from 0
+    /// until `record.time`.
+    pub(crate) fn of(record: &Record, window: [f64; 2]) -> Self {
+        let mut t = Self { exposure: overlap(0.0, record.time, window), ..Self::default() };
+        if let Fate::Deposited(w) = record.fate {
+            if record.time >= window[0] && record.time <= window[1] {
+                t.deposited[w] = 1.0;
+                t.events[w] = 1;
+            }
+        }
+        t
+    }
+}
+
+/// Length of `[a, b]` within `window`.
+#[inline]
+fn overlap(a: f64, b: f64, [from, to]: [f64; 2]) -> f64 {
+    (b.min(to) - a.max(from)).max(0.0)
+}
+
+/// Distance from the surface of a particle of radius `r` at `x` to the nearest wall, m
+/// (infinite in a domain without walls).
+#[inline]
+fn wall_gap(p: &Prepared<'_>, x: DVec3, r: f64) -> f64 {
+    let mut gap = f64::INFINITY;
+    for a in 0..3 {
+        if p.walled[a] {
+            gap = gap.min(x[a] - p.lower[a]).min(p.upper[a] - x[a]);
+        }
+    }
+    gap - r
+}
+
+/// Tracks injected particle `id`, with an excursion at each sampled inward crossing of the
+/// layer within the window; returns its record and its tally.
+pub(crate) fn run_with_excursions<
+    const BROWN: bool,
+    const TURB: bool,
+    const FINITE_RE: bool,
+    const EULER: bool,
+    const LIFT: bool,
+>(
+    p: &Prepared<'_>,
+    excursions: &Excursions,
+    id: u64,
+    tally: &mut [WallTally],
+) -> (Record, ParticleTally) {
+    let dt = p.scene.dt;
+    let window = p.window;
+    let mut sampler = particle_rng(p.scene.seed ^ SAMPLER_SALT, id);
+    let mut copies = 0u64;
+    let mut stats = ParticleTally::default();
+    // Excursions' own wall contacts are not the run's: they go to a scratch tally.
+    let mut scratch = vec![WallTally::default(); tally.len()];
+
+    let mut flyer = Flyer::inject(p, id, TURB, BROWN);
+    let mut inside = wall_gap(p, flyer.x, flyer.body.radius) < excursions.layer;
+    for n in 0..p.steps {
+        let t0 = n as f64 * dt;
+        match flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, tally) {
+            Step::Left(fate, t, at) => {
+                stats.exposure += overlap(t0, t0 + t, window);
+                return (flyer.record(fate, t0 + t, at, n as u64 + 1), stats);
+            }
+            Step::Airborne => {
+                stats.exposure += overlap(t0, t0 + dt, window);
+                let entered = wall_gap(p, flyer.x, flyer.body.radius) < excursions.layer;
+                let t1 = t0 + dt;
+                if entered
+                    && !inside
+                    && t1 >= window[0]
+                    && t1 <= window[1]
+                    && sampler.random::<f64>() < excursions.sampling
+                {
+                    let streams = (p.scene.seed, id, &mut copies);
+                    excursion::<BROWN, TURB, FINITE_RE, EULER, LIFT>(
+                        p,
+                        excursions,
+                        &flyer,
+                        n + 1,
+                        streams,
+                        &mut sampler,
+                        &mut stats,
+                        &mut scratch,
+                    );
+                }
+                inside = entered;
+            }
+        }
+    }
+    (flyer.record(Fate::Airborne, p.steps as f64 * dt, flyer.x, p.steps as u64), stats)
+}
+
+/// A branch of an excursion waiting to be stepped: the particle, its weight and level, and
+/// the next step.
+struct Branch {
+    flyer: Flyer,
+    weight: f64,
+    level: usize,
+    next: usize,
+}
+
+/// One excursion from `start` (just inside the layer, before step `next`): its branches'
+/// weighted deposits, times `1 / sampling`, go to `stats`.
+#[allow(clippy::too_many_arguments)]
+fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
+    p: &Prepared<'_>,
+    excursions: &Excursions,
+    start: &Flyer,
+    next: usize,
+    (seed, id, copies): (u64, u64, &mut u64),
+    roulette: &mut Xoshiro256PlusPlus,
+    stats: &mut ParticleTally,
+    scratch: &mut [WallTally],
+) {
+    let splitting = &excursions.splitting;
+    let (_, per_step) = normals_per_step(TURB, BROWN, EULER);
+    let last = next + (excursions.max_duration / p.scene.dt).ceil() as usize;
+    let mut stack = Vec::new();
+    *copies += 1;
+    let flyer = start.with_streams(Normals::from_rng(&mut branch_rng(seed, id, *copies)), next, per_step);
+    let level = splitting.level(wall_gap(p, flyer.x, flyer.body.radius));
+    let first = Branch { flyer, weight: 1.0 / excursions.sampling, level: 0, next };
+    let target = first.weight * splitting.weight(level);
+    window_weight(first, level, target, &mut stack, (seed, id, copies, per_step), roulette);
+
+    while let Some(Branch { mut flyer, weight, level, next }) = stack.pop() {
+        for n in next..last {
+            match flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, scratch) {
+                Step::Left(Fate::Deposited(w), ..) => {
+                    stats.deposited[w] += weight;
+                    stats.events[w] += 1;
+                    break;
+                }
+                Step::Left(..) => break,
+                Step::Airborne => {
+                    let gap = wall_gap(p, flyer.x, flyer.body.radius);
+                    if gap >= excursions.layer {
+                        break;
+                    }
+                    let new_level = splitting.level(gap);
+                    if new_level != level {
+                        // Split or roulette; what goes on is taken from the stack next.
+                        let target = splitting.weight(new_level) / excursions.sampling;
+                        let branch = Branch { flyer, weight, level, next: n + 1 };
+                        window_weight(branch, new_level, target, &mut stack, (seed, id, copies, per_step), roulette);
+                        break;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Brings a branch's weight to `target`, that of its new `level`: it splits into copies (each
+/// with fresh random streams from then on) or plays Russian roulette; what goes on is pushed
+/// onto `stack`, the branch itself last.
+fn window_weight(
+    mut branch: Branch,
+    level: usize,
+    target: f64,
+    stack: &mut Vec<Branch>,
+    (seed, id, copies, per_step): (u64, u64, &mut u64, usize),
+    roulette: &mut Xoshiro256PlusPlus,
+) {
+    branch.level = level;
+    if branch.weight < target * (1.0 - 1e-9) {
+        if roulette.random::<f64>() * target >= branch.weight {
+            return;
+        }
+        branch.weight = target;
+    }
+    let count = (branch.weight / target).round().max(1.0) as u64;
+    branch.weight /= count as f64;
+    for _ in 1..count {
+        *copies += 1;
+        let streams = Normals::from_rng(&mut branch_rng(seed, id, *copies));
+        let flyer = branch.flyer.with_streams(streams, branch.next, per_step);
+        stack.push(Branch { flyer, weight: branch.weight, level, next: branch.next });
+    }
+    stack.push(branch);
+}
+
+/// Salt of the stream that samples crossings and plays roulette (any constant other than the
+/// particle streams' own).
+const SAMPLER_SALT: u64 = 0x7f4a_7c15_9e37_79b9;
