@@ -44,7 +44,8 @@
 //! ([`Run::deposition_velocity`](crate::Run::deposition_velocity)). This is the error bar
 //! every study prints: one standard error of the estimate over the run's own randomness.
 
-use crate::scene::SceneError;
+use crate::run::run;
+use crate::scene::{Injection, Scene, SceneError};
 
 /// Near-wall excursions (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
@@ -78,20 +79,59 @@ impl Excursions {
         }
         self.splitting.validate()
     }
+
+    /// These excursions with their splitting factors calibrated for `scene` and `injection`:
+    /// `rounds` pilot runs of `count` particles, each with the factors the one before found
+    /// ([`Splitting::calibrated`], at most `max` per level). The pilots use their own seed, so
+    /// the run that follows is as unbiased as with any fixed factors.
+    pub fn calibrated(
+        mut self,
+        scene: &Scene,
+        injection: &Injection,
+        count: usize,
+        rounds: usize,
+        max: u32,
+    ) -> Result<Self, SceneError> {
+        let mut pilot = scene.clone();
+        pilot.seed = scene.seed ^ PILOT_SALT;
+        let injection = Injection { count, ..*injection };
+        for _ in 0..rounds {
+            pilot.excursions = Some(self.clone());
+            let result = run(&pilot, &injection)?;
+            let mut arrivals = [0.0; MAX_LEVELS];
+            let mut branches = [0u64; MAX_LEVELS];
+            let mut started = 0.0;
+            for p in &result.particles {
+                started += f64::from(p.excursions);
+                for k in 0..MAX_LEVELS {
+                    arrivals[k] += p.arrivals[k];
+                    branches[k] += p.branches[k];
+                }
+            }
+            self.splitting = self.splitting.calibrated(started, &arrivals, &branches, max);
+        }
+        Ok(self)
+    }
 }
+
+/// Salt of the pilot runs' seed.
+const PILOT_SALT: u64 = 0x3c6e_f372_fe94_f82b;
 
 /// Splitting toward the walls within the near-wall layer (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Splitting {
     /// Distances from the particle's surface to the nearest wall at which the levels start, m,
-    /// strictly decreasing.
+    /// strictly decreasing: level `k` (from 1) is within `levels[k - 1]`.
     pub levels: Vec<f64>,
-    /// Copies a particle splits into per level crossed inwards (at least 2).
-    pub factor: u32,
+    /// Copies a branch splits into on entering each level (at least 1), one per level.
+    pub factors: Vec<u32>,
 }
 
-/// The deepest level's weight may not fall below this (a bound on the number of branches a
-/// particle can have, `factor^levels`).
+/// Most levels a splitting may have.
+pub const MAX_LEVELS: usize = 32;
+
+/// The deepest level's weight may not fall below this (a bound on the number of branches an
+/// excursion can have).
 const SMALLEST_WEIGHT: f64 = 1e-12;
 
 impl Splitting {
@@ -101,17 +141,28 @@ impl Splitting {
     pub fn geometric(outer: f64, inner: f64, ratio: f64, factor: u32) -> Self {
         let mut levels = Vec::new();
         let mut d = outer;
-        while d >= inner * (1.0 - 1e-9) && levels.len() < 64 && ratio > 1.0 {
+        while d >= inner * (1.0 - 1e-9) && levels.len() < MAX_LEVELS && ratio > 1.0 {
             levels.push(d);
             d /= ratio;
         }
-        Self { levels, factor }
+        let factors = vec![factor; levels.len()];
+        Self { levels, factors }
     }
 
-    /// Checks the levels and the factor; the error names the field.
+    /// Checks the levels and the factors; the error names the field.
     pub fn validate(&self) -> Result<(), SceneError> {
-        if self.factor < 2 {
-            return Err(SceneError::new("splitting.factor", f64::from(self.factor), "must be at least 2"));
+        if self.levels.len() > MAX_LEVELS {
+            return Err(SceneError::new("splitting.levels", self.levels.len() as f64, "must be at most 32"));
+        }
+        if self.factors.len() != self.levels.len() {
+            return Err(SceneError::new(
+                "splitting.factors",
+                self.factors.len() as f64,
+                "must give one factor per level",
+            ));
+        }
+        if let Some(&f) = self.factors.iter().find(|&&f| f < 1) {
+            return Err(SceneError::new("splitting.factors", f64::from(f), "must be at least 1"));
         }
         for (i, &d) in self.levels.iter().enumerate() {
             if !(d.is_finite() && d > 0.0) {
@@ -123,9 +174,9 @@ impl Splitting {
         }
         if self.weight(self.levels.len()) < SMALLEST_WEIGHT {
             return Err(SceneError::new(
-                "splitting.levels",
-                self.levels.len() as f64,
-                "are too many for the factor: the deepest weight would fall below 1e-12",
+                "splitting.factors",
+                self.weight(self.levels.len()),
+                "multiply to too much: the deepest weight would fall below 1e-12",
             ));
         }
         Ok(())
@@ -139,11 +190,32 @@ impl Splitting {
         self.levels.iter().take_while(|&&d| distance < d).count()
     }
 
-    /// The target weight of `level`, `factor^-level`.
+    /// The target weight of `level`: one over the product of the factors of the levels up to
+    /// it.
     #[inline]
     #[must_use]
     pub fn weight(&self, level: usize) -> f64 {
-        f64::from(self.factor).powi(-(level as i32))
+        1.0 / self.factors[..level].iter().map(|&f| f64::from(f)).product::<f64>()
+    }
+
+    /// Factors that keep the expected number of branches about the same at every level, from
+    /// a pilot run's weighted arrivals per level (`arrivals[k]` into level `k + 1`, from
+    /// [`ParticleTally::arrivals`](crate::ParticleTally::arrivals)) and its number of
+    /// excursions: `f_k = A_{k-1} / A_k`, rounded and clamped to `1..=max`. A level the pilot
+    /// reached fewer than `20` times takes the factor of the level above it.
+    #[must_use]
+    pub fn calibrated(&self, excursions: f64, arrivals: &[f64], branches: &[u64], max: u32) -> Self {
+        let mut factors = Vec::with_capacity(self.levels.len());
+        let mut above = excursions;
+        let mut last = 2;
+        for k in 0..self.levels.len() {
+            let (a, n) = (arrivals.get(k).copied().unwrap_or(0.0), branches.get(k).copied().unwrap_or(0));
+            let f = if n >= 20 && a > 0.0 { (above / a).round().clamp(1.0, f64::from(max)) as u32 } else { last };
+            factors.push(f);
+            last = f;
+            above = a;
+        }
+        Self { levels: self.levels.clone(), factors }
     }
 }
 
@@ -153,7 +225,7 @@ mod tests {
 
     #[test]
     fn levels_count_the_distances_passed() {
-        let s = Splitting { levels: vec![0.1, 0.01, 0.001], factor: 3 };
+        let s = Splitting { levels: vec![0.1, 0.01, 0.001], factors: vec![3; 3] };
         assert_eq!(s.level(1.0), 0);
         assert_eq!(s.level(0.1), 0);
         assert_eq!(s.level(0.05), 1);
@@ -161,6 +233,16 @@ mod tests {
         assert_eq!(s.level(0.0), 3);
         assert_eq!(s.weight(2), 1.0 / 9.0);
         assert!(s.validate().is_ok());
+    }
+
+    #[test]
+    fn calibrated_factors_follow_the_pilot_arrivals() {
+        let s = Splitting::geometric(1.0, 0.1, 2.0, 2);
+        // 1000 excursions; arrivals at each level (weighted) fall by 4, 2, then 10; the last
+        // level saw too few branches and takes the factor above it.
+        let c = s.calibrated(1000.0, &[250.0, 125.0, 12.5, 1.0], &[250, 250, 100, 5], 8);
+        assert_eq!(c.factors, vec![4, 2, 8, 8]);
+        assert_eq!(c.levels, s.levels);
     }
 
     #[test]
@@ -172,10 +254,16 @@ mod tests {
 
     #[test]
     fn bad_splitting_names_the_field() {
-        let bad = |levels: Vec<f64>, factor| Splitting { levels, factor }.validate().unwrap_err().field;
-        assert_eq!(bad(vec![0.1], 1), "splitting.factor");
+        let bad = |levels: Vec<f64>, factor| {
+            let factors = vec![factor; levels.len()];
+            Splitting { levels, factors }.validate().unwrap_err().field
+        };
+        assert_eq!(bad(vec![0.1], 0), "splitting.factors");
         assert_eq!(bad(vec![0.1, 0.2], 2), "splitting.levels");
         assert_eq!(bad(vec![0.1, f64::NAN], 2), "splitting.levels");
         assert_eq!(bad((0..50).map(|k| 0.5f64.powi(k)).collect(), 2), "splitting.levels");
+        assert_eq!(bad((0..30).map(|k| 0.5f64.powi(k)).collect(), 4), "splitting.factors");
+        let s = Splitting { levels: vec![0.1], factors: vec![] };
+        assert_eq!(s.validate().unwrap_err().field, "splitting.factors");
     }
 }

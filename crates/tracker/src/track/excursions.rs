@@ -7,13 +7,13 @@ use glam::DVec3;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::RngExt;
 
-use crate::excursions::Excursions;
+use crate::excursions::{Excursions, MAX_LEVELS};
 use crate::noise::{branch_rng, particle_rng, Normals};
 
 use super::{normals_per_step, Fate, Flyer, Prepared, Record, Step, WallTally};
 
 /// What one injected particle contributed to a run's averaging window.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ParticleTally {
     /// Airborne time within the averaging window, s.
     pub exposure: f64,
@@ -22,6 +22,27 @@ pub struct ParticleTally {
     pub deposited: [f64; 6],
     /// Deposit events behind `deposited`, per wall id (unweighted).
     pub events: [u32; 6],
+    /// Excursions started.
+    pub excursions: u32,
+    /// Weighted arrivals of the excursions' branches into each splitting level (index `k` for
+    /// level `k + 1`), times the sampling probability: what
+    /// [`Splitting::calibrated`](crate::Splitting::calibrated) reads.
+    pub arrivals: [f64; MAX_LEVELS],
+    /// Branches that arrived into each level (unweighted).
+    pub branches: [u64; MAX_LEVELS],
+}
+
+impl Default for ParticleTally {
+    fn default() -> Self {
+        Self {
+            exposure: 0.0,
+            deposited: [0.0; 6],
+            events: [0; 6],
+            excursions: 0,
+            arrivals: [0.0; MAX_LEVELS],
+            branches: [0; MAX_LEVELS],
+        }
+    }
 }
 
 impl ParticleTally {
@@ -56,6 +77,25 @@ fn wall_gap(p: &Prepared<'_>, x: DVec3, r: f64) -> f64 {
         }
     }
     gap - r
+}
+
+/// The gap a particle would have left after flying freely towards the nearest wall, m: for
+/// each wall, its surface's distance less the stop distance `tau v` of its velocity towards
+/// that wall; the smallest over the walls. This, rather than the plain distance, sets a
+/// branch's splitting level: an inertial particle close to a wall and moving away from it is
+/// far less likely to deposit than one coasting towards it.
+#[inline]
+fn free_flight_gap(p: &Prepared<'_>, flyer: &Flyer) -> f64 {
+    let (x, v, r, tau) = (flyer.x, flyer.v, flyer.body.radius, flyer.body.tau);
+    let mut gap = f64::INFINITY;
+    for a in 0..3 {
+        if p.walled[a] {
+            let lower = x[a] - p.lower[a] - r + tau * v[a].min(0.0);
+            let upper = p.upper[a] - x[a] - r - tau * v[a].max(0.0);
+            gap = gap.min(lower).min(upper);
+        }
+    }
+    gap
 }
 
 /// Tracks injected particle `id`, with an excursion at each sampled inward crossing of the
@@ -141,15 +181,16 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
     scratch: &mut [WallTally],
 ) {
     let splitting = &excursions.splitting;
+    stats.excursions += 1;
     let (_, per_step) = normals_per_step(TURB, BROWN, EULER);
     let last = next + (excursions.max_duration / p.scene.dt).ceil() as usize;
     let mut stack = Vec::new();
     *copies += 1;
     let flyer = start.with_streams(Normals::from_rng(&mut branch_rng(seed, id, *copies)), next, per_step);
-    let level = splitting.level(wall_gap(p, flyer.x, flyer.body.radius));
+    let level = splitting.level(free_flight_gap(p, &flyer));
     let first = Branch { flyer, weight: 1.0 / excursions.sampling, level: 0, next };
     let target = first.weight * splitting.weight(level);
-    window_weight(first, level, target, &mut stack, (seed, id, copies, per_step), roulette);
+    window_weight(first, level, target, &mut stack, (seed, id, copies, per_step), roulette, stats, excursions.sampling);
 
     while let Some(Branch { mut flyer, weight, level, next }) = stack.pop() {
         for n in next..last {
@@ -165,12 +206,26 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
                     if gap >= excursions.layer {
                         break;
                     }
-                    let new_level = splitting.level(gap);
-                    if new_level != level {
+                    let new_level = splitting.level(free_flight_gap(p, &flyer));
+                    // `level` is the level whose weight the branch carries. A branch splits as soon
+                    // as it goes deeper, but plays roulette only two levels out: a branch
+                    // that hovers at a level's edge (as Brownian motion makes it do) is not
+                    // split and rouletted over and over.
+                    if new_level > level || new_level + 1 < level {
                         // Split or roulette; what goes on is taken from the stack next.
                         let target = splitting.weight(new_level) / excursions.sampling;
                         let branch = Branch { flyer, weight, level, next: n + 1 };
-                        window_weight(branch, new_level, target, &mut stack, (seed, id, copies, per_step), roulette);
+                        let streams = (seed, id, &mut *copies, per_step);
+                        window_weight(
+                            branch,
+                            new_level,
+                            target,
+                            &mut stack,
+                            streams,
+                            roulette,
+                            stats,
+                            excursions.sampling,
+                        );
                         break;
                     }
                 }
@@ -181,7 +236,8 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
 
 /// Brings a branch's weight to `target`, that of its new `level`: it splits into copies (each
 /// with fresh random streams from then on) or plays Russian roulette; what goes on is pushed
-/// onto `stack`, the branch itself last.
+/// onto `stack`, the branch itself last. An arrival deeper is counted in `stats`.
+#[allow(clippy::too_many_arguments)]
 fn window_weight(
     mut branch: Branch,
     level: usize,
@@ -189,7 +245,13 @@ fn window_weight(
     stack: &mut Vec<Branch>,
     (seed, id, copies, per_step): (u64, u64, &mut u64, usize),
     roulette: &mut Xoshiro256PlusPlus,
+    stats: &mut ParticleTally,
+    sampling: f64,
 ) {
+    for l in branch.level..level {
+        stats.arrivals[l] += branch.weight * sampling;
+        stats.branches[l] += 1;
+    }
     branch.level = level;
     if branch.weight < target * (1.0 - 1e-9) {
         if roulette.random::<f64>() * target >= branch.weight {
