@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::room::{Measured, Tally};
+use super::room::{Measured, Tally, ERROR_NOTE};
 use super::{print_csv, scene_file, Error, Format};
 
 #[derive(ClapArgs, Debug)]
@@ -37,6 +37,10 @@ struct Row {
     papavergos_hedley: f64,
     ratio_to_wood: f64,
     particle_steps: u64,
+    /// "excursions" or "plain".
+    method: &'static str,
+    /// With excursions: the share of their weight given up at their longest duration.
+    excursions_truncated: Option<f64>,
     wall_tally: Tally,
 }
 
@@ -79,6 +83,8 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             papavergos_hedley: p.papavergos_hedley,
             ratio_to_wood: p.v_plus.value / p.wood,
             particle_steps: p.particle_steps,
+            method: if p.excursions.is_some() { "excursions" } else { "plain" },
+            excursions_truncated: p.excursions,
             wall_tally: p.tally.into(),
         })
         .collect();
@@ -129,7 +135,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 study.count
             );
             out!(
-                "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7}",
+                "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7}  method",
                 "tau+",
                 "d (um)",
                 "Sc",
@@ -139,19 +145,29 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 "ratio"
             );
             for r in &rows {
+                let method = match r.excursions_truncated {
+                    Some(t) if t > 1e-3 => format!("excursions ({:.1} %)", 100.0 * t),
+                    Some(_) => "excursions".to_string(),
+                    None => "plain".to_string(),
+                };
+                let ratio =
+                    if r.v_plus.upper_bound.is_some() { "-".to_string() } else { format!("{:.2}", r.ratio_to_wood) };
                 out!(
-                    "{:>8.3} {:>9.3} {:>9.2e}  {:>28}  {:>9.2e} {:>9.2e} {:>7.2}",
+                    "{:>8.3} {:>9.3} {:>9.2e}  {:>28}  {:>9.2e} {:>9.2e} {:>7}  {method}",
                     r.tau_plus,
                     r.diameter_um,
                     r.schmidt,
-                    format!("{:.2e} +- {:.1e} [{}]", r.v_plus.value, r.v_plus.error, r.v_plus.events),
+                    r.v_plus.cell(),
                     r.wood,
                     r.papavergos_hedley,
-                    r.ratio_to_wood
+                    ratio
                 );
             }
-            out!("ratio = depo / Wood; fewer than ~10 deposits: not resolved by this run's length.");
-            out!("{steps} particle-steps in {seconds:.1} s ({:.1e} per second).", steps as f64 / seconds);
+            out!("ratio = depo / Wood. {ERROR_NOTE}");
+            out!(
+                "Averages over the last {:.0} % of the run; {steps} particle-steps tracked (excursions not counted) in {seconds:.1} s.",
+                100.0 * (1.0 - study.transient)
+            );
         }
     }
     if let Some(path) = &args.plot {

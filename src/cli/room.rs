@@ -28,19 +28,49 @@ pub struct RoomArgs {
     no_plot: bool,
 }
 
-/// A measured value with its standard error and the deposits it rests on.
+/// A measured value with its standard error, the deposit events it rests on, and with no
+/// event a 95 % upper bound.
 #[derive(Serialize)]
 pub struct Measured {
     pub value: f64,
     pub error: f64,
     pub events: usize,
+    pub upper_bound: Option<f64>,
 }
 
 impl From<Estimate> for Measured {
     fn from(e: Estimate) -> Self {
-        Self { value: e.value, error: e.error, events: e.events }
+        let upper_bound = (e.events == 0).then_some(e.upper_bound);
+        Self { value: e.value, error: e.error, events: e.events, upper_bound }
     }
 }
+
+impl Measured {
+    /// `value +- error [events]`, or `< bound [0]` when nothing deposited.
+    pub fn cell(&self) -> String {
+        match self.upper_bound {
+            Some(bound) => format!("< {bound:.1e} [0]"),
+            None => format!("{:.2e} +- {:.1e} [{}]", self.value, self.error, self.events),
+        }
+    }
+
+    /// The same scaled by `k` (a change of unit).
+    pub fn scaled(&self, k: f64) -> Self {
+        Self {
+            value: self.value * k,
+            error: self.error * k,
+            events: self.events,
+            upper_bound: self.upper_bound.map(|b| b * k),
+        }
+    }
+}
+
+/// The note under a study's table: what its numbers mean.
+pub const ERROR_NOTE: &str = "+- is one standard error of the estimate over the run's randomness (delta method over \
+the injected particles); [n] deposit events it rests on; with none, < the 95 % upper bound. \
+\"excursions\": deposits counted by near-wall excursions, an unbiased estimate of the steady \
+deposition rate (their share given up at their longest duration, a bound on what that may \
+miss, in parentheses when above 0.1 %).";
 
 #[derive(Serialize)]
 struct Model {
@@ -87,6 +117,10 @@ struct Row {
     beta_per_hour: Measured,
     lai_nazaroff: Model,
     particle_steps: u64,
+    /// "excursions" or "plain".
+    method: &'static str,
+    /// With excursions: the share of their weight given up at their longest duration.
+    excursions_truncated: Option<f64>,
     wall_tally: Tally,
     deposited: Deposited,
     #[serde(skip)]
@@ -114,7 +148,7 @@ struct Report<'a> {
 }
 
 fn row(p: &RoomPoint) -> Row {
-    let per_hour = |e: Estimate| Measured { value: e.value * 3600.0, error: e.error * 3600.0, events: e.events };
+    let per_hour = |e: Estimate| Measured::from(e).scaled(3600.0);
     Row {
         diameter_um: p.diameter * 1e6,
         floor: p.floor.into(),
@@ -128,6 +162,8 @@ fn row(p: &RoomPoint) -> Row {
             beta_per_hour: p.model_beta * 3600.0,
         },
         particle_steps: p.particle_steps,
+        method: if p.excursions.is_some() { "excursions" } else { "plain" },
+        excursions_truncated: p.excursions,
         wall_tally: p.tally.into(),
         deposited: Deposited {
             floor: p.deposited[0].0,
@@ -217,9 +253,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 study.count,
                 study.scene.duration
             );
-            out!("measured +- standard error [deposits], beside Lai & Nazaroff (2000) for the same u*.");
+            out!("beside Lai & Nazaroff (2000) for the same u*; ratio = beta / Lai & Nazaroff's beta.");
             out!(
-                "{:>8}  {:>26} {:>9}  {:>26} {:>9}  {:>26} {:>9}  {:>20} {:>7} {:>6}",
+                "{:>8}  {:>26} {:>9}  {:>26} {:>9}  {:>26} {:>9}  {:>20} {:>7} {:>6}  method",
                 "d (um)",
                 "floor",
                 "L&N",
@@ -231,10 +267,15 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "L&N",
                 "ratio"
             );
-            let cell = |m: &Measured| format!("{:.2e} +- {:.1e} [{}]", m.value, m.error, m.events);
+            let cell = Measured::cell;
             for r in &rows {
+                let method = match r.excursions_truncated {
+                    Some(t) if t > 1e-3 => format!("excursions ({:.1} %)", 100.0 * t),
+                    Some(_) => "excursions".to_string(),
+                    None => "plain".to_string(),
+                };
                 out!(
-                    "{:>8.3}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>20} {:>7.3} {:>6.2}",
+                    "{:>8.3}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>20} {:>7.3} {:>6.2}  {method}",
                     r.diameter_um,
                     cell(&r.floor),
                     r.lai_nazaroff.floor,
@@ -247,7 +288,12 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour
                 );
             }
-            out!("{steps} particle-steps in {seconds:.1} s ({:.1e} per second).", steps as f64 / seconds);
+            out!("{ERROR_NOTE}");
+            out!(
+                "Averages from {} s to {} s; {steps} particle-steps tracked (excursions not counted) in {seconds:.1} s.",
+                study.transient * study.scene.duration,
+                study.scene.duration
+            );
         }
     }
     if !args.no_plot {

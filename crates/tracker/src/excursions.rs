@@ -53,8 +53,10 @@ pub struct Excursions {
     /// Thickness of the near-wall layer whose inward crossings start excursions: the distance
     /// from a particle's surface to the nearest wall, m.
     pub layer: f64,
-    /// Probability that an inward crossing within the averaging window starts an excursion,
-    /// in `(0, 1]`.
+    /// Excursions started per inward crossing within the averaging window, on average: below
+    /// 1 a probability, above 1 several independent excursions from the same crossing (its
+    /// whole part, and one more with the probability of its fraction). Each weighs
+    /// `1 / sampling`.
     pub sampling: f64,
     /// Longest an excursion is followed, s; beyond it, it counts as having left the layer.
     pub max_duration: f64,
@@ -63,13 +65,30 @@ pub struct Excursions {
 }
 
 impl Excursions {
+    /// Excursions in wall units of a flow with friction velocity `u*` (m/s) and kinematic
+    /// viscosity `nu` (m^2/s), as the studies use them: a layer of 30 wall units (the buffer
+    /// layer, where the near-wall turbulence profiles change fastest), levels halving from 15
+    /// wall units down to `inner` wall units, each splitting by 2 until calibrated
+    /// ([`Excursions::calibrated`]), `sampling` excursions per crossing, given up after
+    /// `max_duration` wall time units (`nu / u*^2`).
+    #[must_use]
+    pub fn in_wall_units(friction_velocity: f64, nu: f64, inner: f64, sampling: f64, max_duration: f64) -> Self {
+        let unit = nu / friction_velocity;
+        Self {
+            layer: 30.0 * unit,
+            sampling,
+            max_duration: max_duration * unit / friction_velocity,
+            splitting: Splitting::geometric(15.0 * unit, inner * unit, 2.0, 2),
+        }
+    }
+
     /// Checks every field; the error names the first offending one.
     pub fn validate(&self) -> Result<(), SceneError> {
         if !(self.layer.is_finite() && self.layer > 0.0) {
             return Err(SceneError::new("excursions.layer", self.layer, "must be finite and positive"));
         }
-        if !(self.sampling > 0.0 && self.sampling <= 1.0) {
-            return Err(SceneError::new("excursions.sampling", self.sampling, "must be in (0, 1]"));
+        if !(self.sampling > 0.0 && self.sampling <= 1e6) {
+            return Err(SceneError::new("excursions.sampling", self.sampling, "must be in (0, 1e6]"));
         }
         if !(self.max_duration.is_finite() && self.max_duration > 0.0) {
             return Err(SceneError::new("excursions.max_duration", self.max_duration, "must be finite and positive"));

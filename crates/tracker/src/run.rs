@@ -204,6 +204,20 @@ impl Run {
         Estimate::ratio(samples, scale, events, self.smallest_weight)
     }
 
+    /// With [`Excursions`](crate::Excursions): the weight of excursion branches given up at
+    /// their longest duration, over the weight that deposited (zero otherwise). A bound on
+    /// the share of deposits that giving them up may have missed.
+    #[must_use]
+    pub fn truncated_share(&self) -> f64 {
+        let truncated: f64 = self.particles.iter().map(|p| p.truncated).sum();
+        let deposited: f64 = self.particles.iter().map(|p| p.deposited.iter().sum::<f64>()).sum();
+        if truncated > 0.0 {
+            truncated / deposited
+        } else {
+            0.0
+        }
+    }
+
     /// Loss-rate coefficient `beta = sum(v_d A) / V` over the averaging window, 1/s: the
     /// first-order rate at which deposition removes airborne particles.
     #[must_use]

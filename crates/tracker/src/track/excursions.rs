@@ -24,6 +24,10 @@ pub struct ParticleTally {
     pub events: [u32; 6],
     /// Excursions started.
     pub excursions: u32,
+    /// Weight of the excursions' branches given up at [`Excursions::max_duration`] while
+    /// still in the layer (an upper bound on the deposits missed by giving them up; branches
+    /// that left or deposited on their last step count too).
+    pub truncated: f64,
     /// Weighted arrivals of the excursions' branches into each splitting level (index `k` for
     /// level `k + 1`), times the sampling probability: what
     /// [`Splitting::calibrated`](crate::Splitting::calibrated) reads.
@@ -39,6 +43,7 @@ impl Default for ParticleTally {
             deposited: [0.0; 6],
             events: [0; 6],
             excursions: 0,
+            truncated: 0.0,
             arrivals: [0.0; MAX_LEVELS],
             branches: [0; MAX_LEVELS],
         }
@@ -133,23 +138,24 @@ pub(crate) fn run_with_excursions<
                 stats.exposure += overlap(t0, t0 + dt, window);
                 let entered = wall_gap(p, flyer.x, flyer.body.radius) < excursions.layer;
                 let t1 = t0 + dt;
-                if entered
-                    && !inside
-                    && t1 >= window[0]
-                    && t1 <= window[1]
-                    && sampler.random::<f64>() < excursions.sampling
-                {
-                    let streams = (p.scene.seed, id, &mut copies);
-                    excursion::<BROWN, TURB, FINITE_RE, EULER, LIFT>(
-                        p,
-                        excursions,
-                        &flyer,
-                        n + 1,
-                        streams,
-                        &mut sampler,
-                        &mut stats,
-                        &mut scratch,
-                    );
+                if entered && !inside && t1 >= window[0] && t1 <= window[1] {
+                    // `sampling` excursions per crossing on average: its whole part, and one
+                    // more with the probability of its fraction.
+                    let count = excursions.sampling.floor() as u64
+                        + u64::from(sampler.random::<f64>() < excursions.sampling.fract());
+                    for _ in 0..count {
+                        let streams = (p.scene.seed, id, &mut copies);
+                        excursion::<BROWN, TURB, FINITE_RE, EULER, LIFT>(
+                            p,
+                            excursions,
+                            &flyer,
+                            n + 1,
+                            streams,
+                            &mut sampler,
+                            &mut stats,
+                            &mut scratch,
+                        );
+                    }
                 }
                 inside = entered;
             }
@@ -193,7 +199,15 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
     window_weight(first, level, target, &mut stack, (seed, id, copies, per_step), roulette, stats, excursions.sampling);
 
     while let Some(Branch { mut flyer, weight, level, next }) = stack.pop() {
+        if next >= last {
+            stats.truncated += weight;
+            continue;
+        }
         for n in next..last {
+            if n + 1 == last {
+                // Its last step: whatever it does, it is given up after it.
+                stats.truncated += weight;
+            }
             match flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, scratch) {
                 Step::Left(Fate::Deposited(w), ..) => {
                     stats.deposited[w] += weight;
