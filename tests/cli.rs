@@ -310,6 +310,9 @@ fn scene_file_errors_name_the_file_line_and_key() {
     std::fs::write(&transient, "[run]\ntransient = 1.5\n").unwrap();
     user_error(&["room", transient.to_str().unwrap(), "--no-plot"], "`run.transient` = 1.5");
     user_error(&["room", dir.join("missing.toml").to_str().unwrap()], "cannot read");
+    let drag = dir.join("drag.toml");
+    std::fs::write(&drag, "[run]\ndrag = \"newton\"\n").unwrap();
+    user_error(&["channel", drag.to_str().unwrap()], "`run.drag` = \"newton\"");
     user_error(&["channel", "--tau-plus", "-1"], "--tau-plus");
 }
 

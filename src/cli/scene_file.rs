@@ -6,7 +6,7 @@ use std::path::Path;
 
 use depo::tracker::air::STANDARD_GRAVITY;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
-use depo::tracker::{Flow, Geometry, Scene, WallBehaviour};
+use depo::tracker::{Drag, Flow, Geometry, Scene, WallBehaviour};
 use depo::wall_model::{SizeDependence, WallLaw};
 use serde::Deserialize;
 
@@ -58,6 +58,9 @@ struct RunFile {
     gravity: Option<f64>,
     lift: Option<bool>,
     transient: Option<f64>,
+    /// "stokes" or "schiller-naumann".
+    drag: Option<String>,
+    excursions: Option<bool>,
 }
 
 #[derive(Deserialize, Default)]
@@ -113,6 +116,7 @@ struct ChannelSection {
 struct ChannelParticles {
     tau_plus: Option<Vec<f64>>,
     count: Option<usize>,
+    excursion_count: Option<usize>,
     density: Option<f64>,
 }
 
@@ -142,6 +146,18 @@ fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<T, Error> {
             None => format!("{}: {message}", path.display()),
         }
     })
+}
+
+/// The drag law a `run.drag` names.
+fn drag(path: &Path, name: Option<&str>) -> Result<Option<Drag>, Error> {
+    match name {
+        None => Ok(None),
+        Some("stokes") => Ok(Some(Drag::Stokes)),
+        Some("schiller-naumann") => Ok(Some(Drag::SchillerNaumann)),
+        Some(other) => {
+            Err(format!("{}: `run.drag` = \"{other}\": expected \"stokes\" or \"schiller-naumann\"", path.display()))
+        }
+    }
 }
 
 fn set<T>(slot: &mut T, value: Option<T>) {
@@ -249,6 +265,8 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
+    set(&mut scene.drag, drag(path, file.run.drag.as_deref())?);
+    set(&mut study.excursions, file.run.excursions);
     scene.gravity = gravity(file.run.gravity.unwrap_or(STANDARD_GRAVITY));
     if file.run.dt_plus.is_some() || file.run.duration_plus.is_some() {
         return Err(format!("{}: a room takes `run.dt` and `run.duration` in seconds", path.display()));
@@ -291,12 +309,17 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
+    set(&mut scene.drag, drag(path, file.run.drag.as_deref())?);
+    if file.run.excursions == Some(false) {
+        study.excursions_below = 0.0;
+    }
     scene.gravity = gravity(file.run.gravity.unwrap_or(0.0));
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
     set(&mut study.transient, file.run.transient);
     check_transient(path, study.transient)?;
     set(&mut study.tau_plus, file.particles.tau_plus);
     set(&mut study.count, file.particles.count);
+    set(&mut study.excursion_count, file.particles.excursion_count);
     set(&mut study.density, file.particles.density);
     Ok(study)
 }

@@ -104,21 +104,27 @@ pub fn papavergos_hedley(tau_plus: f64, schmidt: f64) -> f64 {
 }
 
 /// The particle diameter (m) of density `density` with dimensionless relaxation time `tau_plus`
-/// in a flow of friction velocity `u*` (slip included, found by bisection).
+/// in a flow of friction velocity `u*` (slip included, found by bisection), or `None` when no
+/// diameter between 0.1 nm and 1 cm gives it (say, `tau+ = 10` at `u* = 1e-4 m/s` would need
+/// a particle larger than 1 cm).
 #[must_use]
-pub fn diameter_for_tau_plus(tau_plus: f64, density: f64, air: &Air, friction_velocity: f64) -> f64 {
+pub fn diameter_for_tau_plus(tau_plus: f64, density: f64, air: &Air, friction_velocity: f64) -> Option<f64> {
     let nu = air.kinematic_viscosity();
     let tau = tau_plus * nu / (friction_velocity * friction_velocity);
+    let relaxation = |d: f64| Aerodynamics::new(d, density, air, 0.0).relaxation_time;
     let (mut lo, mut hi) = (1e-10_f64, 1e-2_f64);
+    if !(tau.is_finite() && relaxation(lo) <= tau && tau <= relaxation(hi)) {
+        return None;
+    }
     for _ in 0..200 {
         let mid = (lo * hi).sqrt();
-        if Aerodynamics::new(mid, density, air, 0.0).relaxation_time < tau {
+        if relaxation(mid) < tau {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    (lo * hi).sqrt()
+    Some((lo * hi).sqrt())
 }
 
 /// Schmidt number `nu / D` of a particle.
@@ -180,10 +186,12 @@ mod tests {
     #[test]
     fn tau_plus_inverts() {
         let air = Air::standard();
-        let d = diameter_for_tau_plus(10.0, 1000.0, &air, 0.3);
+        let d = diameter_for_tau_plus(10.0, 1000.0, &air, 0.3).unwrap();
         let tau = Aerodynamics::new(d, 1000.0, &air, 0.0).relaxation_time;
         let tp = tau * 0.09 / air.kinematic_viscosity();
         assert!((tp / 10.0 - 1.0).abs() < 1e-9, "{tp}");
+        // tau+ = 10 at u* = 1e-4 m/s would take a particle larger than 1 cm.
+        assert_eq!(diameter_for_tau_plus(10.0, 1000.0, &air, 1e-4), None);
     }
 
     #[test]

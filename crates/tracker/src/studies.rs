@@ -259,7 +259,9 @@ impl ChannelStudy {
         let air = &self.scene.air;
         let mut points = Vec::new();
         for (i, &tp) in self.tau_plus.iter().enumerate() {
-            let d = diameter_for_tau_plus(tp, self.density, air, u_star);
+            let d = diameter_for_tau_plus(tp, self.density, air, u_star).ok_or_else(|| {
+                SceneError::new("particles.tau_plus", tp, "needs a particle diameter outside 0.1 nm to 1 cm here")
+            })?;
             let count = if tp < self.excursions_below { self.excursion_count } else { self.count };
             let injection = Injection::new(count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let mut scene = self.scene.clone();

@@ -4,6 +4,17 @@
 use depo_tracker::studies::{ChannelStudy, RoomStudy};
 use depo_tracker::{run, Estimate, Excursions, Injection, Scene, SizeDistribution};
 
+/// A `tau+` no particle can have at the channel's friction velocity is an error naming it, not
+/// a run of the largest particle under the wrong label.
+#[test]
+fn an_impossible_tau_plus_is_an_error() {
+    let mut study = ChannelStudy { tau_plus: vec![10.0], count: 10, ..ChannelStudy::default() };
+    study.scene.flow = depo_tracker::Flow::TurbulentChannel { friction_velocity: 1e-4 };
+    let err = study.run(|_| {}).unwrap_err();
+    assert_eq!(err.field, "particles.tau_plus");
+    assert_eq!(err.value, 10.0);
+}
+
 /// Turbulent channel, impaction regime: `V+` at `tau+ = 10` within a factor of 2 of Wood (1981).
 #[test]
 fn channel_deposition_at_tau_plus_10_is_within_a_factor_2_of_wood() {
@@ -86,7 +97,7 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
     let channel = ChannelStudy::default();
     let mut scene = channel.scene.clone();
     scene.average_from = 0.5 * scene.duration;
-    let d = depo_tracker::correlations::diameter_for_tau_plus(10.0, 1000.0, &scene.air, 0.3);
+    let d = depo_tracker::correlations::diameter_for_tau_plus(10.0, 1000.0, &scene.air, 0.3).unwrap();
     let injection = Injection::new(400, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
     let excursions = Excursions::in_wall_units(0.3, nu, 0.02, 3.0, 1e4);
     let (plain, split) = compare(&scene, &injection, excursions, 3000, &[0, 1]);
