@@ -126,6 +126,7 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
                     .map(|r| (r.max_error.max(1e-17), r.fraction_of_ceiling))
                     .collect(),
                 markers: true,
+                errors: Vec::new(),
             })
             .filter(|s| !s.points.is_empty())
             .collect();
@@ -220,6 +221,7 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
                     .filter_map(|r| r.relative_error.map(|e| (r.seconds * 1e3, e)))
                     .collect(),
                 markers: true,
+                errors: Vec::new(),
             })
             .collect();
         plot::log_log(

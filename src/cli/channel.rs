@@ -175,6 +175,14 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             name: name.to_string(),
             points: rows.iter().map(|r| (r.tau_plus, pick(r))).filter(|p| p.1 > 0.0).collect(),
             markers,
+            errors: Vec::new(),
+        };
+        // depo's points with their standard errors; a point with no deposit is left off.
+        let measured = Series {
+            name: "depo (+- 1 standard error)".to_string(),
+            points: rows.iter().filter(|r| r.v_plus.value > 0.0).map(|r| (r.tau_plus, r.v_plus.value)).collect(),
+            markers: true,
+            errors: rows.iter().filter(|r| r.v_plus.value > 0.0).map(|r| r.v_plus.error).collect(),
         };
         plot::log_log(
             path,
@@ -182,7 +190,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             "tau+",
             "V+",
             &[
-                series("depo", &|r| r.v_plus.value, true),
+                measured,
                 series("Wood (1981)", &|r| r.wood, false),
                 series("Papavergos & Hedley (1984)", &|r| r.papavergos_hedley, false),
             ],

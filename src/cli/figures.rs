@@ -45,12 +45,14 @@ pub fn run(args: &FiguresArgs) -> Result<(), Error> {
             name: format!("e, tilt {degrees} deg (refit vc = {:.4} m/s)", fitted.params.vc),
             points: speeds.iter().map(|&s| (s, apparent_restitution(&law, s, phi))).collect(),
             markers: false,
+            errors: Vec::new(),
         });
     }
     series.push(Series {
         name: "R".into(),
         points: speeds.iter().map(|&s| (s, law.restitution(s))).collect(),
         markers: false,
+        errors: Vec::new(),
     });
     let path = args.out.join("fig6-tilt.svg");
     plot::lines(&path, "Tilt sensitivity, Ag-coated glass on copper (Fig. 6)", "|vn| (m/s)", "e", &series, true)?;
@@ -70,14 +72,16 @@ pub fn run(args: &FiguresArgs) -> Result<(), Error> {
             name: "Table 1 simulation rows".into(),
             points: rows.iter().map(|(d, p)| (d * 1e6, p.params.vc)).collect(),
             markers: true,
+            errors: Vec::new(),
         },
         Series {
             name: format!("fit: vc ~ d^{:.2}", scaling.vc.exponent),
             points: diameters.iter().map(|&d| (d * 1e6, scaling.vc.at(d))).collect(),
             markers: false,
+            errors: Vec::new(),
         },
-        Series { name: "slope -5/6 (JKR)".into(), points: slope(-5.0 / 6.0), markers: false },
-        Series { name: "slope -5/2".into(), points: slope(-2.5), markers: false },
+        Series { name: "slope -5/6 (JKR)".into(), points: slope(-5.0 / 6.0), markers: false, errors: Vec::new() },
+        Series { name: "slope -5/2".into(), points: slope(-2.5), markers: false, errors: Vec::new() },
     ];
     let path = args.out.join("fig8-size.svg");
     plot::log_log(&path, "Capture velocity against diameter (Fig. 8)", "diameter (um)", "vc (m/s)", &series)?;
@@ -93,6 +97,7 @@ pub fn run(args: &FiguresArgs) -> Result<(), Error> {
                 name: p.id.to_string(),
                 points: log_space(0.01, 20.0, 200).map(|v| (v, law.overall_restitution(v))).collect(),
                 markers: false,
+                errors: Vec::new(),
             }
         })
         .collect();

@@ -162,8 +162,8 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
         let mut data: Vec<(f64, f64)> = samples.iter().map(|s| (s.speed, s.restitution)).collect();
         data.sort_by(|a, b| a.0.total_cmp(&b.0));
         let series = [
-            Series { name: "data".into(), points: data, markers: true },
-            Series { name: "fit: e = R (1 - rho)".into(), points: curve, markers: false },
+            Series { name: "data".into(), points: data, markers: true, errors: Vec::new() },
+            Series { name: "fit: e = R (1 - rho)".into(), points: curve, markers: false, errors: Vec::new() },
         ];
         plot::lines(path, "Fit of Eq. (10)", "|vn| (m/s)", "e", &series, true)?;
         eprintln!("wrote {}", path.display());

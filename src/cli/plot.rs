@@ -6,11 +6,14 @@ use plotters::prelude::*;
 
 use super::Error;
 
-/// One named series of `(x, y)` points, drawn as a line or as markers.
+/// One named series of `(x, y)` points, drawn as a line or as markers, with a standard error
+/// bar per point when `errors` is not empty (drawn as +- one standard error, clipped to the
+/// positive part on a log axis).
 pub struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
     pub markers: bool,
+    pub errors: Vec<f64>,
 }
 
 /// Draws `series` on one chart, logarithmic in x when `log_x`, into the SVG file `path`.
@@ -74,6 +77,14 @@ fn chart(
                 .map_err(|e| fail(&e))?;
             for (i, s) in series.iter().enumerate() {
                 let color = colors[i % colors.len()];
+                if !s.errors.is_empty() {
+                    let low = |y: f64, e: f64| if log_y { (y - e).max(y / 100.0) } else { y - e };
+                    chart
+                        .draw_series(s.points.iter().zip(&s.errors).map(|(&(x, y), &e)| {
+                            ErrorBar::new_vertical(x, low(y, e), y, y + e, color.stroke_width(1), 8)
+                        }))
+                        .map_err(|e| fail(&e))?;
+                }
                 if s.markers {
                     chart
                         .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, color.filled())))

@@ -283,7 +283,11 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     r.lai_nazaroff.ceiling,
                     cell(&r.walls),
                     r.lai_nazaroff.walls,
-                    format!("{:.3} +- {:.3}", r.beta_per_hour.value, r.beta_per_hour.error),
+                    if r.beta_per_hour.value >= 0.1 {
+                        format!("{:.3} +- {:.3}", r.beta_per_hour.value, r.beta_per_hour.error)
+                    } else {
+                        format!("{:.2e} +- {:.1e}", r.beta_per_hour.value, r.beta_per_hour.error)
+                    },
                     r.lai_nazaroff.beta_per_hour,
                     r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour
                 );
@@ -304,6 +308,17 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             // nothing a room shows; such points are left off the log axis.
             points: rows.iter().map(|r| (r.diameter_um, pick(r))).filter(|p| p.1 > 1e-10).collect(),
             markers,
+            errors: Vec::new(),
+        };
+        // depo's values with their standard errors; a surface without a deposit is left off.
+        let measured = |name: &str, pick: &dyn Fn(&Row) -> &Measured| {
+            let kept: Vec<&Row> = rows.iter().filter(|r| pick(r).value > 0.0).collect();
+            Series {
+                name: format!("{name} (depo, +- 1 s.e.)"),
+                points: kept.iter().map(|r| (r.diameter_um, pick(r).value)).collect(),
+                markers: true,
+                errors: kept.iter().map(|r| pick(r).error).collect(),
+            }
         };
         let deposition = args.plot.join("room-deposition.svg");
         plot::log_log(
@@ -312,9 +327,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             "particle diameter (um)",
             "deposition velocity (m/s)",
             &[
-                series("floor (depo)", &|r| r.floor.value, true),
-                series("ceiling (depo)", &|r| r.ceiling.value, true),
-                series("walls (depo)", &|r| r.walls.value, true),
+                measured("floor", &|r| &r.floor),
+                measured("ceiling", &|r| &r.ceiling),
+                measured("walls", &|r| &r.walls),
                 series("floor (Lai & Nazaroff)", &|r| r.lai_nazaroff.floor, false),
                 series("ceiling (Lai & Nazaroff)", &|r| r.lai_nazaroff.ceiling, false),
                 series("walls (Lai & Nazaroff)", &|r| r.lai_nazaroff.walls, false),
@@ -327,7 +342,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             "particle diameter (um)",
             "beta (1/h)",
             &[
-                series("depo", &|r| r.beta_per_hour.value, true),
+                measured("beta", &|r| &r.beta_per_hour),
                 series("Lai & Nazaroff (2000)", &|r| r.lai_nazaroff.beta_per_hour, false),
             ],
         )?;

@@ -19,7 +19,11 @@
 //!   particle's [`Fate`]; in it `fluid` (the fluid velocity a particle sees), `contacts` (the
 //!   wall contacts within a step) and `lanes` (four particles side by side).
 //! - [`run`](mod@run): all particles across cores, reproducibly, and the [`Run`]'s statistics:
-//!   mass balance, deposition velocity, loss rate, deposition maps.
+//!   mass balance, deposition velocity and loss rate with their standard errors, deposition
+//!   maps.
+//! - [`excursions`]: near-wall excursions, the variance reduction for rare deposition: an
+//!   unbiased estimate of the steady deposition rate from split copies of the particles that
+//!   enter a near-wall layer (in `track` as `excursions`).
 //! - [`convergence`]: run time against error of the integrators over the step size.
 //! - [`studies`]: the room and channel studies, runs beside their correlations.
 //! - [`correlations`]: what to compare with: Lai & Nazaroff (2000) for rooms, Wood (1981) and
