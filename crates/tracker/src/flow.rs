@@ -238,6 +238,11 @@ impl Table {
         (i.min(NODES - 2), (s - cell).min(1.0))
     }
 
+    /// The steepest `|d sigma / dy|` of the table, 1/s.
+    pub fn steepest(&self) -> f64 {
+        self.nodes.iter().map(|n| n.slope.abs()).fold(0.0, f64::max)
+    }
+
     /// The profile at distance `y >= 0` (m), clamped to the table's range.
     #[inline(always)]
     pub fn at(&self, y: f64) -> Node {
@@ -405,6 +410,15 @@ pub(crate) struct FlowField {
 }
 
 impl FlowField {
+    /// The steepest gradient of a velocity fluctuation's rms along its own direction,
+    /// `max |d sigma_i / dx_i|`, 1/s (zero without turbulence): what the well-mixed drift
+    /// corrects for. (A channel's streamwise and spanwise rms change across the channel, not
+    /// along their own directions, and need no drift.)
+    pub fn steepest_gradient(&self) -> f64 {
+        let along_own_axis = |(i, c): (usize, &Component)| (c.axis == i).then(|| c.table.steepest());
+        self.turbulence.iter().flat_map(|t| t.iter().enumerate().filter_map(along_own_axis)).fold(0.0, f64::max)
+    }
+
     /// Tabulates `flow` for a domain of `size` (m), kinematic viscosity `nu` (m^2/s) and step
     /// `dt` (s). `drift_correction = false` drops the well-mixed drift (for comparison only).
     pub fn new(flow: &Flow, size: [f64; 3], nu: f64, dt: f64, drift_correction: bool) -> Self {

@@ -52,7 +52,11 @@ proptest! {
 
     #[test]
     fn every_particle_is_accounted_for_and_stays_in_the_domain((scene, injection) in scene_strategy()) {
-        let result = run(&scene, &injection).unwrap();
+        let result = match run(&scene, &injection) {
+            // A step too long for the turbulence's gradients is refused (tested elsewhere).
+            Err(e) if e.field == "dt" => return Ok(()),
+            other => other.unwrap(),
+        };
         let b = result.balance();
         prop_assert_eq!(b.airborne + b.deposited.iter().sum::<usize>() + b.escaped, injection.count);
         let size = scene.geometry.size();
@@ -115,7 +119,11 @@ fn extreme_scenes_stay_finite() {
             scene.flow = flow;
             scene.brownian = true;
             let injection = Injection::new(40, SizeDistribution::Monodisperse { diameter: d }, density);
-            let result = run(&scene, &injection).unwrap();
+            let result = match run(&scene, &injection) {
+                // Steps too long for the turbulence's gradients are refused, and only those.
+                Err(e) if e.field == "dt" && flow != Flow::Still && dt >= 0.5 => continue,
+                other => other.unwrap(),
+            };
             let b = result.balance();
             assert_eq!(b.airborne + b.deposited.iter().sum::<usize>(), 40, "d {d} dt {dt} rho {density} {flow:?}");
             assert_eq!(b.escaped, 0, "d {d} dt {dt} rho {density} {flow:?}");
