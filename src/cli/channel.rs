@@ -49,6 +49,10 @@ struct Report<'a> {
     friction_velocity: f64,
     re_tau: f64,
     particles_per_point: usize,
+    /// Particles per point where excursions count the deposits (`tau+` below
+    /// `excursions_below_tau_plus`).
+    excursion_particles_per_point: usize,
+    excursions_below_tau_plus: f64,
     duration_plus: f64,
     points: &'a [Row],
 }
@@ -95,6 +99,8 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 friction_velocity: u_star,
                 re_tau,
                 particles_per_point: study.count,
+                excursion_particles_per_point: study.excursion_count,
+                excursions_below_tau_plus: study.excursions_below,
                 duration_plus: study.scene.duration * u_star * u_star / nu,
                 points: &rows,
             };
@@ -131,8 +137,10 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
         }
         Format::Table => {
             out!(
-                "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+; V+ = v_d / u*",
-                study.count
+                "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+ ({} below tau+ {} with excursions); V+ = v_d / u*",
+                study.count,
+                study.excursion_count,
+                study.excursions_below
             );
             out!(
                 "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7}  method",
