@@ -62,4 +62,4 @@ pub use flow::Flow;
 pub use geometry::{Geometry, Orientation, Wall};
 pub use run::{run, Balance, Estimate, Run};
 pub use scene::{Drag, Injection, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
-pub use track::{Fate, ParticleTally, Record, WallTally, MAX_CONTACTS};
+pub use track::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};

@@ -186,6 +186,10 @@ impl<'a> Prepared<'a> {
 pub(crate) struct Body {
     aero: Aerodynamics,
     radius: f64,
+    /// The centre's distance from a wall plane at which the particle counts as touching it,
+    /// m: the radius, plus with Brownian motion the continuity correction for contacts missed
+    /// between step ends, `0.5826 sx` (see [`CONTINUITY_CORRECTION`]).
+    contact: f64,
     /// Gravity with buoyancy, `g (1 - rho/rho_p)`, m/s^2.
     gravity: DVec3,
     /// Drag relaxation time, s.
@@ -201,6 +205,18 @@ pub(crate) struct Body {
     /// Thermal velocity variance per axis `kT/m`, m^2/s^2.
     thermal_variance: f64,
 }
+
+/// The continuity correction of an absorbing barrier watched only at step ends: a Brownian
+/// path that ends a step on the near side of a barrier may have touched it within the step,
+/// and watching at step ends only is, to leading order, watching a barrier moved away by
+/// `beta sx`, with `sx` the step's standard deviation and `beta = -zeta(1/2) / sqrt(2 pi) =
+/// 0.5826` (Broadie, Glasserman & Kou 1997, Math. Finance 7:325; Siegmund 1985). So contacts
+/// are taken `beta sx` before the wall. Brownian deposition of 0.01 um particles released near
+/// a floor at the room's step (0.05 s, `sx` = 73 um) was 6 % below the exact solution without
+/// it (tested). The paths it assumes are Brownian over a step (`dt >> tau`, as for every
+/// particle where the correction is not negligible); for smoother ones it overcorrects by a
+/// part of `sx`, which is then small.
+pub const CONTINUITY_CORRECTION: f64 = 0.582_597_157_939_010_7;
 
 /// `(sx, cxv, sv)` of the exact Brownian step for `h = dt / tau` and thermal variance `kt_m`.
 fn brownian_coefficients(h: f64, tau: f64, kt_m: f64) -> [f64; 3] {
@@ -235,6 +251,7 @@ impl Body {
         let mut body = Self {
             aero,
             radius: 0.5 * diameter,
+            contact: 0.5 * diameter,
             gravity: g * buoyancy,
             tau: 0.0,
             settling: DVec3::ZERO,
@@ -244,6 +261,9 @@ impl Body {
             thermal_variance: kt,
         };
         body.relax_in(aero.relaxation_time, scene.dt);
+        if scene.brownian && scene.scheme == Scheme::Exponential {
+            body.contact += CONTINUITY_CORRECTION * body.brownian[0];
+        }
         body
     }
 
@@ -516,7 +536,7 @@ impl Flyer {
         let flight =
             Flight::<EULER> { x0: x, v0: v, v_inf, tau: body.tau, decay: body.decay, relax: body.relax, dt, bx, bv };
         let (x1, v1) = flight.end();
-        if inside(x1, body.radius, p) {
+        if inside(x1, body.contact, p) {
             self.x = wrap(x1, p);
             self.v = v1;
             if !(self.x.is_finite() && self.v.is_finite()) {

@@ -107,7 +107,8 @@ pub(super) fn contacts<const EULER: bool>(
     mut s: State,
     tally: &mut [WallTally],
 ) -> AfterContacts {
-    let r = body.radius;
+    // The contact plane: the radius, plus the continuity correction with Brownian motion.
+    let r = body.contact;
     let mut elapsed = 0.0;
     let (mut last_wall, mut last_x) = (0, s.x);
     for _ in 0..MAX_CONTACTS {
@@ -146,7 +147,11 @@ pub(super) fn contacts<const EULER: bool>(
         x[wall.axis] = if wall.upper { wall.position - r } else { wall.position + r };
         let x = wrap(x, p);
         elapsed += t;
-        (last_wall, last_x) = (wall.id, x);
+        // Where a deposited particle rests: touching the wall (the contact plane is moved out
+        // by the continuity correction with Brownian motion).
+        let mut touching = x;
+        touching[wall.axis] = if wall.upper { wall.position - body.radius } else { wall.position + body.radius };
+        (last_wall, last_x) = (wall.id, touching);
         let n = DVec3::from_array(wall.normal());
         // The trajectory crossed the plane: its normal velocity points into the wall.
         let vn = v.dot(n);
@@ -158,7 +163,7 @@ pub(super) fn contacts<const EULER: bool>(
             WallBehaviour::Sink => {
                 w.captures += 1;
                 w.energy.deposition += 0.5 * body.aero.mass * v.length_squared();
-                return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
+                return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, touching);
             }
             WallBehaviour::Reflect => {
                 w.rebounds += 1;
@@ -171,7 +176,7 @@ pub(super) fn contacts<const EULER: bool>(
             WallBehaviour::Law { .. } if v.dot(n) >= 0.0 => {
                 // Touching without closing in: resting contact.
                 w.captures += 1;
-                return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
+                return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, touching);
             }
             WallBehaviour::Law { law, size } => {
                 let vc = match size {
@@ -192,7 +197,7 @@ pub(super) fn contacts<const EULER: bool>(
                 }
                 if result.coefficients.captured {
                     w.captures += 1;
-                    return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, x);
+                    return AfterContacts::Left(Fate::Deposited(wall.id), elapsed, touching);
                 }
                 w.rebounds += 1;
                 flight = flight.restart(x, DVec3::from_array(result.velocity), left);

@@ -91,7 +91,7 @@ fn wall_gap(p: &Prepared<'_>, x: DVec3, r: f64) -> f64 {
 /// far less likely to deposit than one coasting towards it.
 #[inline]
 fn free_flight_gap(p: &Prepared<'_>, flyer: &Flyer) -> f64 {
-    let (x, v, r, tau) = (flyer.x, flyer.v, flyer.body.radius, flyer.body.tau);
+    let (x, v, r, tau) = (flyer.x, flyer.v, flyer.body.contact, flyer.body.tau);
     let mut gap = f64::INFINITY;
     for a in 0..3 {
         if p.walled[a] {
@@ -126,7 +126,7 @@ pub(crate) fn run_with_excursions<
     let mut scratch = vec![WallTally::default(); tally.len()];
 
     let mut flyer = Flyer::inject(p, id, TURB, BROWN);
-    let mut inside = wall_gap(p, flyer.x, flyer.body.radius) < excursions.layer;
+    let mut inside = wall_gap(p, flyer.x, flyer.body.contact) < excursions.layer;
     for n in 0..p.steps {
         let t0 = n as f64 * dt;
         match flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, tally) {
@@ -136,7 +136,7 @@ pub(crate) fn run_with_excursions<
             }
             Step::Airborne => {
                 stats.exposure += overlap(t0, t0 + dt, window);
-                let entered = wall_gap(p, flyer.x, flyer.body.radius) < excursions.layer;
+                let entered = wall_gap(p, flyer.x, flyer.body.contact) < excursions.layer;
                 let t1 = t0 + dt;
                 if entered && !inside && t1 >= window[0] && t1 <= window[1] {
                     // `sampling` excursions per crossing on average: its whole part, and one
@@ -216,7 +216,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
                 }
                 Step::Left(..) => break,
                 Step::Airborne => {
-                    let gap = wall_gap(p, flyer.x, flyer.body.radius);
+                    let gap = wall_gap(p, flyer.x, flyer.body.contact);
                     if gap >= excursions.layer {
                         break;
                     }

@@ -106,9 +106,9 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
                 let Injected { body, start, x: x0, v: v0, zeta: z0, normals } = inject(p, id, TURB, BROWN);
                 for a in 0..3 {
                     (x[a][l], v[a][l], zeta[a][l], settling[a][l]) = (x0[a], v0[a], z0[a], body.settling[a]);
-                    (lo[a][l], hi[a][l]) = free_bounds(p, a, body.radius);
+                    (lo[a][l], hi[a][l]) = free_bounds(p, a, body.contact);
                 }
-                (decay[l], relax[l], radius[l], n[l]) = (body.decay, body.relax, body.radius, 0);
+                (decay[l], relax[l], radius[l], n[l]) = (body.decay, body.relax, body.contact, 0);
                 for (k, b) in body.brownian.into_iter().enumerate() {
                     brownian[k][l] = b;
                 }
