@@ -312,14 +312,32 @@ pub(crate) struct State {
     zeta: [f64; 3],
 }
 
+/// What a scene's step needs, each a const generic of the particle loops.
+#[derive(Clone, Copy)]
+struct Needs {
+    brown: bool,
+    turb: bool,
+    finite_re: bool,
+    euler: bool,
+    lift: bool,
+}
+
+impl Needs {
+    fn of(p: &Prepared<'_>) -> Self {
+        let scene = p.scene;
+        Self {
+            brown: scene.brownian,
+            turb: p.field.turbulence.is_some(),
+            finite_re: scene.drag == Drag::SchillerNaumann,
+            euler: scene.scheme == Scheme::Euler,
+            lift: scene.lift && p.field.profile.is_some(),
+        }
+    }
+}
+
 /// Tracks particles `ids` through the run, adding their wall contacts to `tally`.
 pub(crate) fn track(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [WallTally]) -> Vec<Record> {
-    let scene = p.scene;
-    let brown = scene.brownian;
-    let turb = p.field.turbulence.is_some();
-    let finite_re = scene.drag == Drag::SchillerNaumann;
-    let euler = scene.scheme == Scheme::Euler;
-    let lift = scene.lift && p.field.profile.is_some();
+    let Needs { brown, turb, finite_re, euler, lift } = Needs::of(p);
     // One monomorphised loop per combination of what the scene needs, chosen once for all the
     // particles: each flag becomes a const generic, and the loop carries no code for a force
     // left out. Turbulent scenes with the common options step particles side by side.
@@ -351,12 +369,7 @@ pub(crate) fn track_excursions(
     ids: std::ops::Range<usize>,
     tally: &mut [WallTally],
 ) -> (Vec<Record>, Vec<ParticleTally>) {
-    let scene = p.scene;
-    let brown = scene.brownian;
-    let turb = p.field.turbulence.is_some();
-    let finite_re = scene.drag == Drag::SchillerNaumann;
-    let euler = scene.scheme == Scheme::Euler;
-    let lift = scene.lift && p.field.profile.is_some();
+    let Needs { brown, turb, finite_re, euler, lift } = Needs::of(p);
     macro_rules! dispatch {
         ([$($done:literal)*] []) => {
             ids.map(|id| excursions::run_with_excursions::<$($done),*>(p, excursions, id as u64, tally)).unzip()
