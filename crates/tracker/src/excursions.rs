@@ -2,47 +2,48 @@
 //! tracking to resolve, with an estimator that is unbiased for the steady state.
 //!
 //! ## Why
-//! In a room, a 0.1 um particle deposits at about 1e-6 m/s: in half an hour about one particle
-//! in two hundred reaches a surface, so a plain run of 2000 particles counts a handful of
-//! deposits per surface. What decides deposition happens within millimetres of the walls,
-//! where almost none of the tracked particles are; and the Brownian sublayer that limits it
-//! fills over times longer than a run (about `Sc` wall time units thick squared), so even a
-//! long plain run starts far from the steady state that deposition correlations describe.
+//! In a room, a 0.1 um particle deposits at about 1e-6 m/s: a plain run of 2000 particles over
+//! half an hour counted 3 to 7 deposits per surface, and none on the ceiling. What decides
+//! deposition happens within millimetres of the walls, where almost none of the tracked
+//! particles are; and the Brownian sublayer that limits it fills over about its thickness
+//! squared over the diffusivity, which for a 1 um particle in a room is estimated at about an
+//! hour, so a plain run does not even reach the steady state that deposition correlations
+//! describe.
 //!
 //! ## How
 //! The run tracks its particles plainly: they give the airborne exposure and the steady
 //! stream of *inward crossings* of a near-wall layer of thickness [`Excursions::layer`] (the
 //! distance from a particle's surface to the nearest wall). Each crossing within the averaging
-//! window starts, with probability [`Excursions::sampling`], an *excursion*: a copy of the
-//! particle with fresh random streams, followed until it deposits, leaves the layer again, or
-//! outlives [`Excursions::max_duration`]. Its deposits, weighted `1 / sampling`, are what the
-//! run counts; the plain particle's own deposits are not (it goes on, or ends, as plain
-//! tracking would have it).
+//! window starts [`Excursions::sampling`] *excursions* on average: copies of the particle with
+//! fresh random streams, each followed until it deposits, leaves the layer again, or outlives
+//! [`Excursions::max_duration`]. Their deposits, weighted `1 / sampling`, are what the run
+//! counts; the plain particle's own deposits are not (it goes on, or ends, as plain tracking
+//! would have it).
 //!
 //! Each excursion's outcome is an unbiased estimate of the probability that a particle
 //! entering the layer in that state deposits before it leaves, so the counted deposits per
 //! unit time estimate, without bias, the steady deposition rate `(entry rate) x (deposition
 //! probability per entry)` (conditional Monte Carlo; the entry states are the plain run's own,
 //! whatever the concentration profile near the wall). A test compares it with plain tracking
-//! where plain tracking reaches the steady state and resolves it.
+//! where plain tracking reaches the steady state and resolves it. Giving an excursion up at
+//! its longest duration is the one approximation; [`Run::truncated_share`](crate::Run::truncated_share)
+//! bounds what it may miss.
 //!
-//! Within the layer, excursions are split toward the wall ([`Splitting`]): the distance to
-//! the nearest wall sets a branch's level, each level has a target weight, and after every
-//! step a branch's weight is brought to its level's (a weight window): moving deeper it
-//! *splits* into copies that go on independently, moving out it plays *Russian roulette*,
-//! surviving with probability `w / W` at weight `W`. Both keep the expected weight, so every
-//! weighted sum keeps its expectation (Kahn & Harris 1951; the weight windows of Monte Carlo
-//! neutron transport, Booth & Hendricks 1984): the levels decide only how far the variance
-//! falls per unit of work.
+//! Within the layer, excursions are split toward the wall ([`Splitting`]) by weight windows.
+//! A branch's level is set by the gap it would have left after flying freely towards the
+//! nearest wall (the distance less the stop distance of its velocity towards it), and each
+//! level has a target weight. A branch that goes deeper *splits* into copies of the deeper
+//! level's weight that go on independently; one that comes out two levels plays *Russian
+//! roulette*, surviving with probability `w / W` at weight `W` (a single level's way out is
+//! let pass, so that a branch hovering at a level's edge is not split and rouletted over and
+//! over). Both keep the expected weight, so every weighted sum keeps its expectation (Kahn &
+//! Harris 1951; the weight windows of Monte Carlo neutron transport, Booth & Hendricks 1984):
+//! the levels and factors decide only how far the variance falls per unit of work.
 //!
 //! ## Estimates and their errors
-//! A deposition velocity is a ratio of two sums over the injected particles, deposits
-//! `X_i` (an injected particle's excursions' weighted deposits) over exposure `E_i` (its
-//! airborne time in the window). The particles are independent and identically distributed,
-//! so `R = sum X_i / sum E_i` gets the delta method's standard error
-//! `sqrt(n / (n - 1) sum (X_i - R E_i)^2) / sum E_i`
-//! ([`Run::deposition_velocity`](crate::Run::deposition_velocity)). This is the error bar
-//! every study prints: one standard error of the estimate over the run's own randomness.
+//! A deposition velocity is a ratio of deposits (an injected particle's excursions' weighted
+//! deposits) to exposure (its airborne time in the window), summed over the injected
+//! particles, with the delta method's standard error over them: see [`crate::run`](mod@crate::run).
 
 use crate::run::run;
 use crate::scene::{Injection, Scene, SceneError};

@@ -11,9 +11,9 @@
 //! Where deposition is rare (every size in the room; `tau+` below 10 in the channel) they
 //! count deposits by near-wall [`Excursions`] ([`Excursions::in_wall_units`], with splitting
 //! factors calibrated by a pilot of a quarter of the particles): an unbiased estimate of the
-//! steady deposition rate, which resolves in seconds what plain tracking would need hours
-//! for, and which does not wait for the Brownian sublayer to fill (for a 1 um particle in a
-//! room, longer than the run). `excursions: false` gives plain tracking, for comparison.
+//! steady deposition rate that does not wait for the Brownian sublayer to fill, and in the
+//! room at 0.1 um six to eight times as efficient as plain tracking (`1 / (error^2 time)`;
+//! see `docs/performance-log.md`). `excursions: false` gives plain tracking, for comparison.
 
 use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
