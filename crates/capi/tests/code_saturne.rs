@@ -1,0 +1,133 @@
+//! depo inside a real CFD code: Code_Saturne 6.0 (Debian's `code-saturne`) runs the check case
+//! of `integrations/code_saturne` with libdepo at every particle-wall contact, and every contact
+//! it recorded must be what depo's own `WallLaw` gives for the same incoming velocity and
+//! normal: the same outcome and the same outgoing velocity to round-off.
+//!
+//! Without Code_Saturne the test fails under CI (`CI` set; `.ci/run` installs it) and is
+//! reported and skipped elsewhere.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use depo_wall_model::{LawParams, WallLaw};
+use glam::DVec3;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
+}
+
+/// Builds libdepo in the profile of this test binary and returns the directory holding it.
+fn libdir() -> PathBuf {
+    // target/<profile>/deps/code_saturne-<hash>
+    let exe = std::env::current_exe().unwrap();
+    let profile_dir = exe.parent().unwrap().parent().unwrap().to_path_buf();
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut build = Command::new(cargo);
+    build.current_dir(root()).args(["build", "-q", "-p", "depo-capi"]);
+    if profile_dir.file_name().is_some_and(|n| n == "release") {
+        build.arg("--release");
+    }
+    assert!(build.status().expect("cargo build -p depo-capi").success(), "building libdepo failed");
+    profile_dir
+}
+
+fn run(cmd: &mut Command) -> String {
+    let out = cmd.output().unwrap_or_else(|e| panic!("{cmd:?}: {e}"));
+    assert!(
+        out.status.success(),
+        "{cmd:?} failed\nstdout:\n{}\nstderr:\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// The zones' names and laws the run reported, by boundary zone id: its log lines
+/// `depo: zone "floor" (id 1): preset li1997-sio2`.
+fn zone_laws(log: &str) -> HashMap<u32, (String, WallLaw)> {
+    let mut laws = HashMap::new();
+    for line in log.lines().filter_map(|l| l.strip_prefix("depo: zone ")) {
+        let (name, rest) = line.split_once(" (id ").expect("a zone id");
+        let (id, law) = rest.split_once("): ").expect("a zone law");
+        let id: u32 = id.parse().unwrap();
+        let law = match law.split_once(' ') {
+            Some(("preset", id)) => WallLaw::preset(id.trim()).unwrap(),
+            Some(("constants", numbers)) => {
+                let c: Vec<f64> = numbers.split_whitespace().map(|x| x.parse().unwrap()).collect();
+                let [k1, k2, kappa1, kappa2, p, q, vc, mu] = c[..] else { panic!("{line}") };
+                WallLaw::new(LawParams { k1, k2, kappa1, kappa2, p, q, vc, mu }).unwrap()
+            }
+            _ => panic!("{line}"),
+        };
+        laws.insert(id, (name.trim_matches('"').to_string(), law));
+    }
+    laws
+}
+
+#[test]
+fn check_case_contacts_are_the_wall_law_to_round_off() {
+    let found = Command::new("code_saturne").args(["info", "--version"]).output().is_ok_and(|o| o.status.success());
+    if !found {
+        assert!(std::env::var_os("CI").is_none(), "code_saturne is missing; .ci/run installs it");
+        eprintln!("SKIPPED: Code_Saturne is not installed (apt-get install code-saturne code-saturne-include)");
+        return;
+    }
+    let lib = libdir();
+    let work = lib.join("code-saturne");
+    let prefix = work.join("prefix");
+    let integration = root().join("integrations/code_saturne");
+    run(Command::new("bash").arg(root().join("crates/capi/install.sh")).arg(&prefix).arg(&lib));
+    let case = work.join("check");
+    run(Command::new("bash")
+        .arg(integration.join("run_case.sh"))
+        .arg(integration.join("check_case"))
+        .arg(&case)
+        .arg("1")
+        .env("DEPO_PREFIX", &prefix));
+
+    let resu = case.join("study/case/RESU/run");
+    let laws = zone_laws(&std::fs::read_to_string(resu.join("listing")).unwrap());
+    assert_eq!(laws.len(), 3, "the check case sets a law on the floor, the ceiling and the walls");
+    let csv = std::fs::read_to_string(resu.join("depo_impacts.csv")).unwrap();
+    let mut counts = [0usize; 4];
+    let mut zones_hit = std::collections::BTreeSet::new();
+    for (row, line) in csv.lines().skip(1).enumerate() {
+        let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let zone = f[0] as u32;
+        let (v, n, out, outcome) =
+            (DVec3::new(f[1], f[2], f[3]), DVec3::new(f[4], f[5], f[6]), [f[7], f[8], f[9]], f[10]);
+        let (name, law) = &laws[&zone];
+        // depo's normal points into the air: up from the floor, down from the ceiling,
+        // horizontal at the side walls.
+        let inward = match name.as_str() {
+            "floor" => n.distance(DVec3::Z) < 1e-12,
+            "ceiling" => n.distance(-DVec3::Z) < 1e-12,
+            _ => n.z.abs() < 1e-12 && (n.length() - 1.0).abs() < 1e-12,
+        };
+        assert!(inward, "row {row}: {line}: not the {name}'s normal into the air");
+        let result = law.impact(v, None, n);
+        let (expected, velocity) = if result.normal_velocity >= 0.0 {
+            (2.0, v.to_array())
+        } else if result.coefficients.captured {
+            (1.0, [0.0; 3])
+        } else {
+            (0.0, result.velocity)
+        };
+        assert_eq!(outcome, expected, "row {row}: {line}");
+        for k in 0..3 {
+            assert!((out[k] - velocity[k]).abs() <= 1e-14 * v.length(), "row {row}: {line}: {velocity:?}");
+        }
+        counts[outcome as usize] += 1;
+        zones_hit.insert(zone);
+    }
+    eprintln!(
+        "Code_Saturne check case: {} contacts, {} rebounds, {} captured",
+        csv.lines().count() - 1,
+        counts[0],
+        counts[1]
+    );
+    // The case is built so that all three zones are hit, and slow particles are captured.
+    assert!(counts[0] > 500 && counts[1] >= 10 && zones_hit.len() == 3, "{counts:?} {zones_hit:?}");
+    assert_eq!(counts[2] + counts[3], 0, "every recorded contact moves into the wall with finite velocity");
+}

@@ -1,0 +1,26 @@
+/* depo inside Code_Saturne: the Brach & Dunn wall law at every particle-wall contact of a
+   boundary zone of type CS_LAGR_BC_USER. See README.md beside this file. */
+
+#ifndef DEPO_CODE_SATURNE_H
+#define DEPO_CODE_SATURNE_H
+
+#include "cs_defs.h"
+#include "cs_lagr.h"
+
+BEGIN_C_DECLS
+
+/* Reads the zone laws from the file `depo_zones` in the run directory, makes one depo law per
+   listed boundary zone, and sets those zones' Lagrangian type to CS_LAGR_BC_USER. Call it from
+   cs_user_lagr_boundary_conditions(), after setting the other zones' types. Stops the run with
+   a message naming the line when the file is missing or wrong. */
+void
+depo_cs_setup(cs_lagr_zone_data_t *lagr_bcs);
+
+/* Impacts handled so far on this rank, per outcome (DEPO_REBOUND, DEPO_CAPTURED,
+   DEPO_SKIPPED, DEPO_INVALID). */
+void
+depo_cs_counts(unsigned long long counts[4]);
+
+END_C_DECLS
+
+#endif
