@@ -3,9 +3,12 @@
 
     box_mesh.py OUT.msh LX LY LZ NX NY NZ
 
-The box spans [0, LX] x [0, LY] x [0, LZ] m in NX x NY x NZ cells. Boundary faces carry the
-physical groups "floor" (z = 0), "ceiling" (z = LZ) and "walls" (the four sides), so that
-Code_Saturne's boundary zones can select them by name.
+The box spans [0, LX] x [0, LY] x [0, LZ] m in NX x NY x NZ cells. Boundary faces carry
+physical groups, named for Gmsh and numbered for Code_Saturne 6.0 (whose preprocessor names a
+Gmsh mesh's groups by their numbers):
+
+    1 floor (z = 0)   2 ceiling (z = LZ)   3 sides (y = 0 and y = LY)
+    4 start (x = 0)   5 end (x = LX)       6 the cells
 """
 import sys
 
@@ -20,7 +23,7 @@ def main(out, lx, ly, lz, nx, ny, nz):
         for j in range(ny + 1)
         for i in range(nx + 1)
     ]
-    groups = {"floor": 1, "ceiling": 2, "walls": 3, "air": 4}
+    groups = {"floor": 1, "ceiling": 2, "sides": 3, "start": 4, "end": 5, "air": 6}
     elements = []  # (gmsh type, physical group, node ids)
     for k in range(nz):
         for j in range(ny):
@@ -35,11 +38,11 @@ def main(out, lx, ly, lz, nx, ny, nz):
             elements.append((3, groups["ceiling"], [node(i, j, nz), node(i + 1, j, nz), node(i + 1, j + 1, nz), node(i, j + 1, nz)]))
     for k in range(nz):
         for j in range(ny):
-            elements.append((3, groups["walls"], [node(0, j, k), node(0, j, k + 1), node(0, j + 1, k + 1), node(0, j + 1, k)]))
-            elements.append((3, groups["walls"], [node(nx, j, k), node(nx, j + 1, k), node(nx, j + 1, k + 1), node(nx, j, k + 1)]))
+            elements.append((3, groups["start"], [node(0, j, k), node(0, j, k + 1), node(0, j + 1, k + 1), node(0, j + 1, k)]))
+            elements.append((3, groups["end"], [node(nx, j, k), node(nx, j + 1, k), node(nx, j + 1, k + 1), node(nx, j, k + 1)]))
         for i in range(nx):
-            elements.append((3, groups["walls"], [node(i, 0, k), node(i + 1, 0, k), node(i + 1, 0, k + 1), node(i, 0, k + 1)]))
-            elements.append((3, groups["walls"], [node(i, ny, k), node(i, ny, k + 1), node(i + 1, ny, k + 1), node(i + 1, ny, k)]))
+            elements.append((3, groups["sides"], [node(i, 0, k), node(i + 1, 0, k), node(i + 1, 0, k + 1), node(i, 0, k + 1)]))
+            elements.append((3, groups["sides"], [node(i, ny, k), node(i, ny, k + 1), node(i + 1, ny, k + 1), node(i + 1, ny, k)]))
 
     with open(out, "w") as f:
         f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n")

@@ -21,14 +21,15 @@
    - CAPTURED: the particle is deposited as Code_Saturne's CS_LAGR_DEPO1 deposits it (flag
      CS_LAGR_PART_DEPOSITED, coordinates at the crossing point, removed from the flow, counted
      in the particle set's deposited number and weight and as a deposition event for the
-     boundary statistics);
+     boundary statistics), or with `captured keep` as CS_LAGR_DEPO2 does (at rest on the wall
+     inside its cell, state CS_LAGR_PART_STUCK, kept in memory);
    - SKIPPED (not moving into the wall) and INVALID (non-finite velocity): the particle is
      treated as leaving the domain (CS_EVENT_OUTFLOW) and counted apart; neither happens for a
      particle that crossed a face with finite velocity.
 
    Each contact can also be written to `depo_impacts.csv` (rank 0 of a serial run, or one file
-   per rank `depo_impacts_<rank>.csv`): zone, incoming velocity, depo normal, outgoing velocity,
-   outcome. The file `depo_zones` sets it: a line `record impacts`.
+   per rank `depo_impacts_<rank>.csv`): zone, particle diameter, incoming velocity, depo normal,
+   outgoing velocity, outcome. The file `depo_zones` sets it: a line `record impacts`.
 
    The configuration file `depo_zones`, in the case's DATA directory (copied to the run
    directory), one zone per line, `#` starts a comment:
@@ -36,6 +37,7 @@
        <zone name> preset <preset id>
        <zone name> constants <k1> <k2> <kappa1> <kappa2> <p> <q> <vc> <mu>
        record impacts
+       captured keep
 */
 
 #include "cs_defs.h"
@@ -66,6 +68,9 @@ BEGIN_C_DECLS
 static DepoWallLaw **_laws = NULL;
 static int _n_zones = 0;
 static FILE *_record = NULL;
+/* Captured particles: removed from the flow (as CS_LAGR_DEPO1), or kept in memory on the
+   wall (as CS_LAGR_DEPO2). */
+static int _keep_captured = 0;
 static unsigned long long _counts[4] = {0, 0, 0, 0};
 
 static void
@@ -117,6 +122,12 @@ _read_zones(void)
       record = 1;
       continue;
     }
+    if (fields >= 2 && strcmp(zone, "captured") == 0) {
+      if (strcmp(kind, "keep") != 0 && strcmp(kind, "remove") != 0)
+        _fail(path, number, "expected \"captured keep\" or \"captured remove\"", kind);
+      _keep_captured = strcmp(kind, "keep") == 0;
+      continue;
+    }
     if (fields < 3)
       _fail(path, number, "expected \"<zone> preset <id>\" or \"<zone> constants <8 numbers>\"", line);
     const cs_zone_t *z = cs_boundary_zone_by_name_try(zone);
@@ -154,7 +165,7 @@ _read_zones(void)
     _record = fopen(name, "w");
     if (_record == NULL)
       bft_error(__FILE__, __LINE__, 0, "depo: cannot write %s\n", name);
-    fprintf(_record, "zone,vx,vy,vz,nx,ny,nz,vx_out,vy_out,vz_out,outcome\n");
+    fprintf(_record, "zone,diameter,vx,vy,vz,nx,ny,nz,vx_out,vy_out,vz_out,outcome\n");
   }
   atexit(_close);
 }
@@ -226,8 +237,9 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
     outcome = DEPO_INVALID; /* a face normal not of unit length: leaves v untouched */
 
   if (_record != NULL)
-    fprintf(_record, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
-            b_zone_id, in[0], in[1], in[2], batch.normal[0], batch.normal[1],
+    fprintf(_record, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
+            b_zone_id, cs_lagr_particles_get_real(particles, p_id, CS_LAGR_DIAMETER),
+            in[0], in[1], in[2], batch.normal[0], batch.normal[1],
             batch.normal[2], v[0], v[1], v[2], (int)outcome);
   if (outcome <= DEPO_INVALID)
     _counts[outcome] += 1;
@@ -251,10 +263,24 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
 #   pragma omp atomic
     particles->weight_dep += cs_lagr_particles_get_real(particles, p_id, CS_LAGR_STAT_WEIGHT);
     cs_lagr_particles_set_flag(particles, p_id, CS_LAGR_PART_DEPOSITED);
-    for (int k = 0; k < 3; k++)
-      coords[k] = c_intersect[k];
-    *event_flag = *event_flag | (CS_EVENT_OUTFLOW | CS_EVENT_DEPOSITION);
-    *tracking_state = CS_LAGR_PART_OUT;
+    if (_keep_captured) {
+      /* As CS_LAGR_DEPO2: at rest on the wall, inside the cell, kept in memory. */
+      cs_real_t *seen = cs_lagr_particles_attr(particles, p_id, CS_LAGR_VELOCITY_SEEN);
+      for (int k = 0; k < 3; k++) {
+        coords[k] = c_intersect[k] + 1e-6 * (centre[k] - c_intersect[k]);
+        seen[k] = 0.0;
+      }
+      cs_lagr_particles_set_lnum(particles, p_id, CS_LAGR_CELL_ID, cell_id);
+      *event_flag = *event_flag | CS_EVENT_DEPOSITION;
+      *tracking_state = CS_LAGR_PART_STUCK;
+    }
+    else {
+      /* As CS_LAGR_DEPO1: removed from the flow. */
+      for (int k = 0; k < 3; k++)
+        coords[k] = c_intersect[k];
+      *event_flag = *event_flag | (CS_EVENT_OUTFLOW | CS_EVENT_DEPOSITION);
+      *tracking_state = CS_LAGR_PART_OUT;
+    }
   }
   else {
     *event_flag = *event_flag | CS_EVENT_OUTFLOW;

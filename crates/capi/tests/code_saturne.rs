@@ -96,7 +96,7 @@ fn check_case_contacts_are_the_wall_law_to_round_off() {
         let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         let zone = f[0] as u32;
         let (v, n, out, outcome) =
-            (DVec3::new(f[1], f[2], f[3]), DVec3::new(f[4], f[5], f[6]), [f[7], f[8], f[9]], f[10]);
+            (DVec3::new(f[2], f[3], f[4]), DVec3::new(f[5], f[6], f[7]), [f[8], f[9], f[10]], f[11]);
         let (name, law) = &laws[&zone];
         // depo's normal points into the air: up from the floor, down from the ceiling,
         // horizontal at the side walls.
