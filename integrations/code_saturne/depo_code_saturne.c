@@ -23,9 +23,10 @@
      in the particle set's deposited number and weight and as a deposition event for the
      boundary statistics), or with `captured keep` as CS_LAGR_DEPO2 does (at rest on the wall
      inside its cell, state CS_LAGR_PART_STUCK, kept in memory);
-   - SKIPPED (not moving into the wall) and INVALID (non-finite velocity): the particle is
-     treated as leaving the domain (CS_EVENT_OUTFLOW) and counted apart; neither happens for a
-     particle that crossed a face with finite velocity.
+   - SKIPPED: the step's displacement crossed the face, but the velocity at the end of the
+     step points away from the wall (turbulent dispersion or drag turned it): no impact; the
+     particle is put back at the contact point with its velocity unchanged, as for a rebound;
+   - INVALID (a non-finite velocity): the particle leaves the domain (CS_EVENT_OUTFLOW).
 
    Each contact can also be written to `depo_impacts.csv` (rank 0 of a serial run, or one file
    per rank `depo_impacts_<rank>.csv`): zone, particle diameter, incoming velocity, depo normal,
@@ -46,6 +47,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "bft_error.h"
 #include "bft_printf.h"
@@ -72,6 +74,16 @@ static FILE *_record = NULL;
    wall (as CS_LAGR_DEPO2). */
 static int _keep_captured = 0;
 static unsigned long long _counts[4] = {0, 0, 0, 0};
+/* Time spent in depo_apply_f64, s. */
+static double _apply_time = 0.0;
+
+static double
+_now(void)
+{
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
 static void
 _close(void)
@@ -195,6 +207,12 @@ depo_cs_counts(unsigned long long counts[4])
     counts[k] = _counts[k];
 }
 
+double
+depo_cs_apply_time(void)
+{
+  return _apply_time;
+}
+
 void
 cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
                                   cs_lnum_t                  p_id,
@@ -233,8 +251,10 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
   for (int k = 0; k < 3; k++)
     batch.normal[k] = inward >= 0.0 ? face_norm[k] : -face_norm[k];
   batch.outcome = &outcome;
+  double start = _now();
   if (depo_apply_f64(_laws[b_zone_id], &batch, NULL) != DEPO_OK)
     outcome = DEPO_INVALID; /* a face normal not of unit length: leaves v untouched */
+  _apply_time += _now() - start;
 
   if (_record != NULL)
     fprintf(_record, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
@@ -264,7 +284,10 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
     particles->weight_dep += cs_lagr_particles_get_real(particles, p_id, CS_LAGR_STAT_WEIGHT);
     cs_lagr_particles_set_flag(particles, p_id, CS_LAGR_PART_DEPOSITED);
     if (_keep_captured) {
-      /* As CS_LAGR_DEPO2: at rest on the wall, inside the cell, kept in memory. */
+      /* As CS_LAGR_DEPO2 without resuspension: at rest on the wall, inside the cell, kept in
+         memory, and fixed (without CS_LAGR_PART_FIXED the particle equations would go on
+         moving it). */
+      cs_lagr_particles_set_flag(particles, p_id, CS_LAGR_PART_FIXED);
       cs_real_t *seen = cs_lagr_particles_attr(particles, p_id, CS_LAGR_VELOCITY_SEEN);
       for (int k = 0; k < 3; k++) {
         coords[k] = c_intersect[k] + 1e-6 * (centre[k] - c_intersect[k]);
@@ -281,6 +304,15 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
       *event_flag = *event_flag | (CS_EVENT_OUTFLOW | CS_EVENT_DEPOSITION);
       *tracking_state = CS_LAGR_PART_OUT;
     }
+  }
+  else if (outcome == DEPO_SKIPPED) {
+    /* The step's displacement crossed the face but the velocity at its end already points
+       away from the wall (turbulent dispersion, drag): not an impact. The particle is put
+       back at the contact point with its velocity, as for a rebound. */
+    for (int k = 0; k < 3; k++)
+      coords[k] = c_intersect[k] + 1e-6 * (centre[k] - c_intersect[k]);
+    cs_lagr_particles_set_lnum(particles, p_id, CS_LAGR_CELL_ID, cell_id);
+    *tracking_state = CS_LAGR_PART_TREATED;
   }
   else {
     *event_flag = *event_flag | CS_EVENT_OUTFLOW;

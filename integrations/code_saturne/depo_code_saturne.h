@@ -21,6 +21,10 @@ depo_cs_setup(cs_lagr_zone_data_t *lagr_bcs);
 void
 depo_cs_counts(unsigned long long counts[4]);
 
+/* Time this rank spent in depo_apply_f64 so far, s (the cost of the law inside the hook). */
+double
+depo_cs_apply_time(void);
+
 END_C_DECLS
 
 #endif

@@ -1,0 +1,37 @@
+/* Duct: k-epsilon turbulence, gravity along -z, 5 ms steps, 1000 steps (5 s). */
+
+#include "cs_defs.h"
+#include "cs_domain.h"
+#include "cs_parameters.h"
+#include "cs_physical_constants.h"
+#include "cs_prototypes.h"
+#include "cs_time_step.h"
+#include "cs_turbulence_model.h"
+
+BEGIN_C_DECLS
+
+void
+cs_user_model(void)
+{
+  cs_turb_model_t *turb_model = cs_get_glob_turb_model();
+  turb_model->iturb = CS_TURB_K_EPSILON;
+}
+
+void
+cs_user_parameters(cs_domain_t *domain)
+{
+  cs_time_step_options_t *time_opt = cs_get_glob_time_step_options();
+  time_opt->idtvar = 0;
+  domain->time_step->dt_ref = 5e-3;
+  domain->time_step->nt_max = 1000;
+  cs_physical_constants_t *constants = cs_get_glob_physical_constants();
+  constants->gravity[0] = 0.0;
+  constants->gravity[1] = 0.0;
+  constants->gravity[2] = -9.81;
+  /* The turbulence's initial state: k and epsilon of a 1 m/s flow in the 0.2 m duct. */
+  cs_turb_ref_values_t *ref = cs_get_glob_turb_ref_values();
+  ref->uref = 1.0;
+  ref->almax = 0.2;
+}
+
+END_C_DECLS
