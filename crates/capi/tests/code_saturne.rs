@@ -87,7 +87,8 @@ fn check_case_contacts_are_the_wall_law_to_round_off() {
         .env("DEPO_PREFIX", &prefix));
 
     let resu = case.join("study/case/RESU/run");
-    let laws = zone_laws(&std::fs::read_to_string(resu.join("listing")).unwrap());
+    let listing = std::fs::read_to_string(resu.join("listing")).unwrap();
+    let laws = zone_laws(&listing);
     assert_eq!(laws.len(), 3, "the check case sets a law on the floor, the ceiling and the walls");
     let csv = std::fs::read_to_string(resu.join("depo_impacts.csv")).unwrap();
     let mut counts = [0usize; 4];
@@ -130,4 +131,12 @@ fn check_case_contacts_are_the_wall_law_to_round_off() {
     // The case is built so that all three zones are hit, and slow particles are captured.
     assert!(counts[0] > 500 && counts[1] >= 10 && zones_hit.len() == 3, "{counts:?} {zones_hit:?}");
     assert_eq!(counts[2] + counts[3], 0, "every recorded contact moves into the wall with finite velocity");
+    // Code_Saturne's own accounting counts depo's captures as its deposits: the listing's
+    // per-step "deposited" lines add up to them.
+    let deposited: usize = listing
+        .lines()
+        .filter_map(|l| l.strip_prefix("ln  deposited"))
+        .map(|l| l.split_whitespace().next().unwrap().parse::<usize>().unwrap())
+        .sum();
+    assert_eq!(deposited, counts[1], "Code_Saturne's deposited count against depo's captures");
 }
