@@ -115,6 +115,9 @@ struct Row {
     ceiling: Measured,
     walls: Measured,
     beta_per_hour: Measured,
+    /// With ventilation: the steady indoor/outdoor ratio `P a / (a + beta)`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    indoor_outdoor: Option<Measured>,
     lai_nazaroff: Model,
     particle_steps: u64,
     /// "excursions" or "plain".
@@ -142,6 +145,8 @@ struct Deposited {
 struct Report<'a> {
     size_m: [f64; 3],
     friction_velocity: f64,
+    air_changes_per_hour: f64,
+    penetration: f64,
     particles_per_size: usize,
     duration_s: f64,
     sizes: &'a [Row],
@@ -155,6 +160,7 @@ fn row(p: &RoomPoint) -> Row {
         ceiling: p.ceiling.into(),
         walls: p.walls.into(),
         beta_per_hour: per_hour(p.beta),
+        indoor_outdoor: p.indoor_outdoor.map(Measured::from),
         lai_nazaroff: Model {
             floor: p.model.floor,
             ceiling: p.model.ceiling,
@@ -193,12 +199,15 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
         _ => 0.0,
     };
     let rows: Vec<Row> = points.iter().map(row).collect();
+    let ventilated = study.scene.air_exchange > 0.0;
     let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();
     match args.format {
         Format::Json => {
             let report = Report {
                 size_m: size,
                 friction_velocity: u_star,
+                air_changes_per_hour: study.scene.air_exchange * 3600.0,
+                penetration: study.penetration,
                 particles_per_size: study.count,
                 duration_s: study.scene.duration,
                 sizes: &rows,
@@ -220,11 +229,16 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "beta_per_hour",
                 "beta_error",
                 "beta_lai_nazaroff",
+                "indoor_outdoor",
+                "indoor_outdoor_error",
             ];
+            // Without ventilation the indoor/outdoor columns are left out.
+            let columns = if ventilated { header.len() } else { header.len() - 2 };
             print_csv(
-                &header,
+                &header[..columns],
                 rows.iter().map(|r| {
-                    [
+                    let io = r.indoor_outdoor.as_ref().map_or([f64::NAN; 2], |m| [m.value, m.error]);
+                    let row = [
                         r.diameter_um,
                         r.floor.value,
                         r.floor.error,
@@ -238,8 +252,11 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                         r.beta_per_hour.value,
                         r.beta_per_hour.error,
                         r.lai_nazaroff.beta_per_hour,
+                        io[0],
+                        io[1],
                     ]
-                    .map(|x| x.to_string())
+                    .map(|x| x.to_string());
+                    row[..columns].to_vec()
                 }),
             )?;
         }
@@ -254,8 +271,15 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 study.scene.duration
             );
             out!("beside Lai & Nazaroff (2000) for the same u*; ratio = beta / Lai & Nazaroff's beta.");
+            if ventilated {
+                out!(
+                    "Ventilated: {} air changes per hour, penetration {}; C_in/C_out = P a / (a + beta) at steady state.",
+                    study.scene.air_exchange * 3600.0,
+                    study.penetration
+                );
+            }
             out!(
-                "{:>8}  {:>26} {:>9}  {:>26} {:>9}  {:>26} {:>9}  {:>20} {:>7} {:>6}  method",
+                "{:>8}  {:>26} {:>9}  {:>26} {:>9}  {:>26} {:>9}  {:>20} {:>7} {:>6}{}  method",
                 "d (um)",
                 "floor",
                 "L&N",
@@ -265,7 +289,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "L&N",
                 "beta (1/h)",
                 "L&N",
-                "ratio"
+                "ratio",
+                if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
             );
             let cell = Measured::cell;
             for r in &rows {
@@ -275,7 +300,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     None => "plain".to_string(),
                 };
                 out!(
-                    "{:>8.3}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>20} {:>7.3} {:>6.2}  {method}",
+                    "{:>8.3}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>20} {:>7.3} {:>6.2}{}  {method}",
                     r.diameter_um,
                     cell(&r.floor),
                     r.lai_nazaroff.floor,
@@ -289,7 +314,10 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                         format!("{:.2e} +- {:.1e}", r.beta_per_hour.value, r.beta_per_hour.error)
                     },
                     r.lai_nazaroff.beta_per_hour,
-                    r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour
+                    r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour,
+                    r.indoor_outdoor
+                        .as_ref()
+                        .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
                 );
             }
             out!("{ERROR_NOTE}");

@@ -89,6 +89,13 @@ struct RoomParticles {
 
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
+struct VentilationFile {
+    air_changes_per_hour: Option<f64>,
+    penetration: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
 struct RoomFile {
     #[serde(default)]
     room: RoomSection,
@@ -100,6 +107,8 @@ struct RoomFile {
     particles: RoomParticles,
     #[serde(default)]
     walls: WallsFile,
+    #[serde(default)]
+    ventilation: VentilationFile,
     #[serde(default)]
     run: RunFile,
 }
@@ -277,6 +286,21 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
     set(&mut study.diameters, file.particles.diameters);
     set(&mut study.count, file.particles.count);
     set(&mut study.density, file.particles.density);
+    if let Some(ach) = file.ventilation.air_changes_per_hour {
+        if !(ach.is_finite() && ach >= 0.0) {
+            return Err(format!(
+                "{}: `ventilation.air_changes_per_hour` = {ach} must be finite and not negative",
+                path.display()
+            ));
+        }
+        scene.air_exchange = ach / 3600.0;
+    }
+    if let Some(p) = file.ventilation.penetration {
+        if !(0.0..=1.0).contains(&p) {
+            return Err(format!("{}: `ventilation.penetration` = {p} must be in [0, 1]", path.display()));
+        }
+        study.penetration = p;
+    }
     if study.diameters.is_empty() {
         return Err(format!("{}: `particles.diameters` is empty", path.display()));
     }

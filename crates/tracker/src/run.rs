@@ -140,6 +140,8 @@ pub struct Balance {
     pub deposited: Vec<usize>,
     /// Escaped.
     pub escaped: usize,
+    /// Exhausted by ventilation.
+    pub exhausted: usize,
     /// Injected mass, kg.
     pub injected_mass: f64,
     /// Airborne mass, kg.
@@ -148,6 +150,8 @@ pub struct Balance {
     pub deposited_mass: Vec<f64>,
     /// Escaped mass, kg.
     pub escaped_mass: f64,
+    /// Exhausted mass, kg.
+    pub exhausted_mass: f64,
 }
 
 /// The outcome of a run.
@@ -186,10 +190,12 @@ impl Run {
             airborne: 0,
             deposited: vec![0; self.walls.len()],
             escaped: 0,
+            exhausted: 0,
             injected_mass: 0.0,
             airborne_mass: 0.0,
             deposited_mass: vec![0.0; self.walls.len()],
             escaped_mass: 0.0,
+            exhausted_mass: 0.0,
         };
         for r in &self.records {
             b.injected_mass += r.mass;
@@ -205,6 +211,10 @@ impl Run {
                 Fate::Escaped => {
                     b.escaped += 1;
                     b.escaped_mass += r.mass;
+                }
+                Fate::Exhausted => {
+                    b.exhausted += 1;
+                    b.exhausted_mass += r.mass;
                 }
             }
         }

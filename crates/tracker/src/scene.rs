@@ -132,6 +132,11 @@ pub struct Scene {
     /// Near-wall excursions, for deposition rates too small to resolve by plain tracking;
     /// `None` (the default) counts the tracked particles' own deposits.
     pub excursions: Option<Excursions>,
+    /// Air-exchange rate `a`, 1/s (air changes per hour / 3600; 0, the default, for a closed
+    /// room). Ventilation takes air from the well-mixed room: each airborne particle is
+    /// exhausted at a rate `a`, wherever it is, so that without deposition the airborne
+    /// number falls as `exp(-a t)`, exactly at the ends of steps (see [`crate::run`]).
+    pub air_exchange: f64,
 }
 
 impl Scene {
@@ -156,6 +161,7 @@ impl Scene {
             drift_correction: true,
             average_from: 0.0,
             excursions: None,
+            air_exchange: 0.0,
         }
     }
 
@@ -201,6 +207,9 @@ impl Scene {
         }
         if let Some(excursions) = &self.excursions {
             excursions.validate()?;
+        }
+        if !(self.air_exchange.is_finite() && self.air_exchange >= 0.0) {
+            return Err(SceneError::new("air_exchange", self.air_exchange, "must be finite and not negative"));
         }
         if self.walls.len() != self.geometry.walls().len() {
             return Err(SceneError::new("walls", self.walls.len() as f64, "must give one behaviour per wall"));

@@ -39,6 +39,10 @@ pub struct RoomStudy {
     pub transient: f64,
     /// Count deposits by near-wall excursions (the default) rather than plain tracking.
     pub excursions: bool,
+    /// Penetration factor `P` of outdoor particles through the building envelope, in `[0, 1]`
+    /// (1 by default): with ventilation ([`Scene::air_exchange`]) it sets the steady
+    /// indoor/outdoor ratio [`RoomPoint::indoor_outdoor`].
+    pub penetration: f64,
 }
 
 /// Excursions per inward crossing in the studies: more than one, as each crossing's
@@ -84,6 +88,7 @@ impl Default for RoomStudy {
             density: 1000.0,
             transient: 0.1,
             excursions: true,
+            penetration: 1.0,
         }
     }
 }
@@ -110,6 +115,10 @@ pub struct RoomPoint {
     /// Whether deposits were counted by near-wall excursions, and if so the share of their
     /// weight given up at their longest duration ([`Run::truncated_share`](crate::Run::truncated_share)).
     pub excursions: Option<f64>,
+    /// With ventilation (air-exchange rate `a > 0`), the steady indoor/outdoor concentration
+    /// ratio of outdoor particles, `C_in / C_out = P a / (a + beta)` (the well-mixed room's
+    /// mass balance with penetration `P`), its error carried from `beta`'s.
+    pub indoor_outdoor: Option<Estimate>,
     /// The wall-law tallies summed over all surfaces.
     pub tally: WallTally,
     /// Deposition maps, one per wall in id order (floor, ceiling, x0, x1, y0, y1), each on a
@@ -135,6 +144,9 @@ fn total(tallies: &[WallTally]) -> WallTally {
 impl RoomStudy {
     /// Runs every size; `progress` is told after each.
     pub fn run(&self, mut progress: impl FnMut(usize)) -> Result<Vec<RoomPoint>, SceneError> {
+        if !(0.0..=1.0).contains(&self.penetration) {
+            return Err(SceneError::new("penetration", self.penetration, "must be in [0, 1]"));
+        }
         let u_star = self.scene.flow.friction_velocity().unwrap_or(0.0);
         let g = self.scene.gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
         let size = self.scene.geometry.size();
@@ -152,12 +164,24 @@ impl RoomStudy {
             let v = |o| result.deposition_velocity(&result.walls_facing(o));
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             let balance = result.balance();
+            let beta = result.loss_rate();
+            let a = scene.air_exchange;
+            let indoor_outdoor = (a > 0.0).then(|| {
+                let ratio = self.penetration * a / (a + beta.value);
+                Estimate {
+                    value: ratio,
+                    error: ratio / (a + beta.value) * beta.error,
+                    events: beta.events,
+                    upper_bound: (ratio + 2.0 * ratio / (a + beta.value) * beta.error).min(self.penetration),
+                }
+            });
             points.push(RoomPoint {
                 diameter: d,
                 floor: v(Orientation::Floor),
                 ceiling: v(Orientation::Ceiling),
                 walls: v(Orientation::Wall),
-                beta: result.loss_rate(),
+                beta,
+                indoor_outdoor,
                 model,
                 model_beta: model.loss_rate(size),
                 particle_steps: result.particle_steps(),

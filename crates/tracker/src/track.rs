@@ -95,6 +95,8 @@ pub enum Fate {
     Deposited(usize),
     /// Lost to the statistics: a non-finite state or a contact the wall law flagged invalid.
     Escaped,
+    /// Taken out of the room by ventilation ([`Scene::air_exchange`]).
+    Exhausted,
 }
 
 /// One particle's history in brief.
@@ -401,7 +403,32 @@ struct Injected {
     v: [f64; 3],
     zeta: [f64; 3],
     normals: Normals,
+    /// Steps it is tracked for: the run's, or fewer when ventilation exhausts it earlier.
+    end: usize,
 }
+
+/// The steps particle `id` stays in the air before ventilation exhausts it, at most the run's
+/// `steps`: `ceil(E / dt)` for an exponential time `E` of rate `a = air_exchange`, drawn from a
+/// stream of its own (so that the particle's other random numbers are those of a closed room).
+/// The particle leaves at the end of that step: the chance to be still in the air after `n`
+/// steps is `exp(-a n dt)`, exactly.
+fn exhaust_steps(p: &Prepared<'_>, id: u64) -> usize {
+    let a = p.scene.air_exchange;
+    if a <= 0.0 {
+        return p.steps;
+    }
+    let u: f64 = particle_rng(p.scene.seed ^ EXHAUST_SALT, id).random();
+    // `1 - u` in (0, 1]: a finite time.
+    let steps = (-(1.0 - u).ln() / (a * p.scene.dt)).ceil();
+    if steps < p.steps as f64 {
+        (steps as usize).max(1)
+    } else {
+        p.steps
+    }
+}
+
+/// Salt of the stream that draws a particle's exhaust time.
+const EXHAUST_SALT: u64 = 0x3c6e_f372_fe94_f82b;
 
 /// Particle `id` at `t = 0`: size, position, velocity (and fluctuation) from its own stream.
 fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
@@ -433,7 +460,7 @@ fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
         let sd = body.thermal_variance.sqrt();
         v += DVec3::new(z[3], z[4], z[5]) * sd;
     }
-    Injected { body, start, x: start, v: v.to_array(), zeta, normals }
+    Injected { body, start, x: start, v: v.to_array(), zeta, normals, end: exhaust_steps(p, id) }
 }
 
 /// What one step did to a particle in flight.
@@ -457,6 +484,8 @@ pub(crate) struct Flyer {
     pub x: DVec3,
     pub v: DVec3,
     pub zeta: [f64; 3],
+    /// Steps it is tracked for ([`exhaust_steps`]).
+    pub end: usize,
     draws: StepNormals,
     /// Saffman's lift per unit relative velocity and root shear rate, `(9.69/pi) sqrt(rho mu) /
     /// (rho_p d)`.
@@ -466,7 +495,7 @@ pub(crate) struct Flyer {
 impl Flyer {
     /// Particle `id` as injected.
     pub fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Self {
-        let Injected { body, start, x, v, zeta, normals } = inject(p, id, turb, brown);
+        let Injected { body, start, x, v, zeta, normals, end } = inject(p, id, turb, brown);
         let air = &p.scene.air;
         let lift_coefficient = 9.69 / std::f64::consts::PI * (air.density * air.viscosity).sqrt()
             / (p.injection.density * body.aero.diameter);
@@ -477,6 +506,7 @@ impl Flyer {
             x: DVec3::from_array(x),
             v: DVec3::from_array(v),
             zeta,
+            end,
             draws: StepNormals::new(normals),
             lift_coefficient,
         }
@@ -485,6 +515,13 @@ impl Flyer {
     /// The same particle with fresh random streams from `normals`, from step `n` on.
     pub fn with_streams(&self, normals: Normals, n: usize, per_step: usize) -> Self {
         Self { draws: StepNormals::starting_at(normals, n, per_step), ..self.clone() }
+    }
+
+    /// The record of a particle still in the air after its [`Flyer::end`] steps: exhausted then,
+    /// or airborne at the end of the run.
+    pub fn finish(&self, p: &Prepared<'_>) -> Record {
+        let fate = if self.end < p.steps { Fate::Exhausted } else { Fate::Airborne };
+        self.record(fate, self.end as f64 * p.scene.dt, self.x, self.end as u64)
     }
 
     /// The record of this particle's end.
@@ -574,12 +611,12 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
 ) -> Record {
     let dt = p.scene.dt;
     let mut flyer = Flyer::inject(p, id, TURB, BROWN);
-    for n in 0..p.steps {
+    for n in 0..flyer.end {
         if let Step::Left(fate, t, at) = flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, tally) {
             return flyer.record(fate, n as f64 * dt + t, at, n as u64 + 1);
         }
     }
-    flyer.record(Fate::Airborne, p.steps as f64 * dt, flyer.x, p.steps as u64)
+    flyer.finish(p)
 }
 
 /// Where a step's Brownian normals start among its variates, and how many it draws: three for

@@ -1,5 +1,6 @@
 //! Invariants over random scenes: every particle is accounted for, nothing becomes NaN, airborne
-//! particles stay inside the domain and deposited ones sit on the wall that took them.
+//! (and exhausted) particles stay inside the domain and deposited ones sit on the wall that
+//! took them.
 
 use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
 use depo_wall_model::{SizeDependence, WallLaw};
@@ -13,10 +14,18 @@ fn scene_strategy() -> impl Strategy<Value = (Scene, Injection)> {
         (-8.0f64..-4.3, 500.0f64..8000.0),
         (any::<bool>(), any::<bool>(), any::<bool>()),
         (0usize..3, -5.0f64..-0.5),
-        any::<u64>(),
+        (any::<u64>(), prop_oneof![Just(0.0), 0.0f64..2.0]),
     )
         .prop_map(
-            |(size, channel, flow, (log_d, density), (brownian, finite_re, euler), (walls, log_dt), seed)| {
+            |(
+                size,
+                channel,
+                flow,
+                (log_d, density),
+                (brownian, finite_re, euler),
+                (walls, log_dt),
+                (seed, exchange),
+            )| {
                 let geometry = if channel {
                     Geometry::Channel { length: size.0, width: size.1, height: size.2 }
                 } else {
@@ -41,6 +50,8 @@ fn scene_strategy() -> impl Strategy<Value = (Scene, Injection)> {
                     _ => WallBehaviour::Law { law, size: Some(SizeDependence::new(70e-6, 1.51).unwrap()) },
                 });
                 scene.seed = seed;
+                // Up to two air changes over the run.
+                scene.air_exchange = exchange / scene.duration;
                 let d = 10f64.powf(log_d);
                 (scene, Injection::new(24, SizeDistribution::Monodisperse { diameter: d }, density))
             },
@@ -58,7 +69,7 @@ proptest! {
             other => other.unwrap(),
         };
         let b = result.balance();
-        prop_assert_eq!(b.airborne + b.deposited.iter().sum::<usize>() + b.escaped, injection.count);
+        prop_assert_eq!(b.airborne + b.deposited.iter().sum::<usize>() + b.escaped + b.exhausted, injection.count);
         let size = scene.geometry.size();
         let walled = scene.geometry.walled();
         for r in &result.records {
@@ -66,7 +77,7 @@ proptest! {
             prop_assert!(r.position.iter().all(|c| c.is_finite()), "{:?}", r);
             prop_assert!(r.time.is_finite() && r.time >= 0.0 && r.time <= result.duration + 1e-12);
             match r.fate {
-                Fate::Airborne => {
+                Fate::Airborne | Fate::Exhausted => {
                     for a in 0..3 {
                         let slack = 1e-9 * size[a];
                         if walled[a] {

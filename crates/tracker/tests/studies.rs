@@ -65,7 +65,8 @@ fn z(a: Estimate, b: Estimate) -> f64 {
 /// The excursions' estimate is unbiased: where plain tracking reaches the steady state and
 /// resolves it, the two agree within three combined standard errors. Three regimes: Brownian
 /// diffusion to every surface of a room (0.01 um), settling onto its floor (3 um), and
-/// turbophoretic impaction in a channel (`tau+ = 10`). A wrong weight (`1 / sqrt(sampling)`
+/// turbophoretic impaction in a channel (`tau+ = 10`); and settling in a ventilated room. A
+/// wrong weight (`1 / sqrt(sampling)`
 /// for `1 / sampling`) put them 9 combined standard errors apart at 0.01 um.
 #[test]
 fn excursions_agree_with_plain_tracking_where_both_resolve() {
@@ -93,6 +94,15 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
         let (plain, split) = compare(&scene, &injection, excursions, plain_count, walls);
         assert!(z(plain, split) < 3.0, "{d} m: plain {plain:?}, excursions {split:?}");
     }
+    // Ventilated, 6 air changes per hour: exhaust scales crossings and deposits alike, and the
+    // excursions need no weight for it (weighting each deposit by the chance `exp(-a s)` that
+    // the particle was not exhausted first put them 3 combined standard errors low).
+    let mut ventilated = scene.clone();
+    ventilated.air_exchange = 6.0 / 3600.0;
+    let injection = Injection::new(1000, SizeDistribution::Monodisperse { diameter: 3e-6 }, 1000.0);
+    let excursions = Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0);
+    let (plain, split) = compare(&ventilated, &injection, excursions, 6000, &[0]);
+    assert!(z(plain, split) < 3.0, "ventilated, 3 um: plain {plain:?}, excursions {split:?}");
     let channel = ChannelStudy::default();
     let mut scene = channel.scene.clone();
     scene.average_from = 0.5 * scene.duration;
@@ -119,4 +129,25 @@ fn excursions_do_not_depend_on_the_thread_count() {
     let two = pool(2).install(|| run(&scene, &injection).unwrap());
     assert_eq!(one, two);
     assert!(one.particles.iter().any(|p| p.excursions > 0 && p.deposited.iter().sum::<f64>() > 0.0));
+}
+
+/// A ventilated room study reports the steady indoor/outdoor ratio `P a / (a + beta)` from its
+/// own `beta`, with the error carried from `beta`'s; a penetration outside `[0, 1]` is an error
+/// that names it.
+#[test]
+fn ventilated_room_reports_the_indoor_outdoor_ratio() {
+    let mut study = RoomStudy { diameters: vec![3e-6], count: 200, penetration: 0.8, ..RoomStudy::default() };
+    study.scene.duration = 600.0;
+    study.scene.air_exchange = 2.0 / 3600.0;
+    let point = &study.run(|_| {}).unwrap()[0];
+    let (a, beta) = (study.scene.air_exchange, point.beta);
+    let io = point.indoor_outdoor.expect("ventilated");
+    // By hand: 0.8 a / (a + beta), and its derivative in beta times beta's error.
+    assert!((io.value - 0.8 * a / (a + beta.value)).abs() < 1e-12, "{io:?} {beta:?}");
+    assert!((io.error - 0.8 * a / (a + beta.value).powi(2) * beta.error).abs() < 1e-12);
+    assert!(beta.value > 0.0 && io.value < 0.8 && io.error > 0.0);
+    study.scene.air_exchange = 0.0;
+    assert!(study.run(|_| {}).unwrap()[0].indoor_outdoor.is_none());
+    study.penetration = 1.5;
+    assert_eq!(study.run(|_| {}).unwrap_err().field, "penetration");
 }

@@ -150,6 +150,56 @@ fn mass_is_conserved() {
     assert!(result.records.iter().all(|r| r.position.iter().all(|c| c.is_finite())));
 }
 
+/// With ventilation too: injected = airborne + deposited + escaped + exhausted, exactly; and
+/// ventilation leaves a closed room's random numbers alone (the particles it does not exhaust
+/// end where they did without it).
+#[test]
+fn mass_is_conserved_with_ventilation() {
+    let (mut scene, injection) = busy_room();
+    scene.air_exchange = 0.02;
+    let result = run(&scene, &injection).unwrap();
+    let b = result.balance();
+    assert_eq!(b.airborne + b.deposited.iter().sum::<usize>() + b.escaped + b.exhausted, b.injected);
+    let mass = b.airborne_mass + b.deposited_mass.iter().sum::<f64>() + b.escaped_mass + b.exhausted_mass;
+    assert!((mass / b.injected_mass - 1.0).abs() < 1e-12);
+    // About 1 - exp(-0.02 * 20) = 33 % exhausted, less what deposits first.
+    assert!(b.exhausted > 600 && b.deposited.iter().sum::<usize>() > 0 && b.airborne > 0, "{b:?}");
+    scene.air_exchange = 0.0;
+    let closed = run(&scene, &injection).unwrap();
+    for (open, closed) in result.records.iter().zip(&closed.records) {
+        if open.fate != Fate::Exhausted {
+            assert_eq!(open, closed);
+        } else {
+            assert!(open.time <= closed.time);
+        }
+    }
+}
+
+/// Ventilation alone (mirror walls, still air): the airborne share after `t` is `exp(-a t)`,
+/// within 4 binomial standard errors at five times, and particles leave at the ends of steps.
+#[test]
+fn ventilation_alone_decays_at_the_exchange_rate() {
+    let a = 0.01;
+    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 2.0, 250.0).with_walls(WallBehaviour::Reflect);
+    scene.gravity = [0.0; 3];
+    scene.air_exchange = a;
+    let n = 20_000;
+    let result = run(&scene, &mono(n, 1e-6)).unwrap();
+    for t in [10.0, 50.0, 100.0, 180.0, 250.0] {
+        // Exhausted at `t` or before, or still in the air.
+        let still = result.records.iter().filter(|r| r.fate == Fate::Airborne || r.time > t + 1e-9).count();
+        let still = still as f64 / n as f64;
+        let expected = (-a * t).exp();
+        let se = (expected * (1.0 - expected) / n as f64).sqrt();
+        assert!((still - expected).abs() < 4.0 * se, "t = {t}: {still} against {expected}");
+    }
+    let b = result.balance();
+    assert_eq!(b.airborne + b.exhausted, n);
+    for r in result.records.iter().filter(|r| r.fate == Fate::Exhausted) {
+        assert!((r.time / 2.0 - (r.time / 2.0).round()).abs() < 1e-12 && r.time > 0.0, "{r:?}");
+    }
+}
+
 /// The same seed gives the same run, bit for bit, on one thread and on two.
 #[test]
 fn results_do_not_depend_on_the_thread_count() {

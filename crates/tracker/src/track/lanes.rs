@@ -83,6 +83,9 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
     // Steps taken, and the box each lane's position must stay in for a step to end without a
     // contact and without being wrapped ([`free_bounds`]).
     let mut n = [0usize; WIDTH];
+    // Steps each lane's particle is tracked for (fewer than the run's when ventilation
+    // exhausts it earlier).
+    let mut end = [0usize; WIDTH];
     let (mut lo, mut hi) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
 
     let record = |lane: &Lane, fate: Fate, time: f64, at: [f64; 3], steps: u64| Record {
@@ -103,7 +106,8 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
             if lanes[l].is_none() && next < ids.end {
                 let id = next as u64;
                 next += 1;
-                let Injected { body, start, x: x0, v: v0, zeta: z0, normals } = inject(p, id, TURB, BROWN);
+                let Injected { body, start, x: x0, v: v0, zeta: z0, normals, end: last } = inject(p, id, TURB, BROWN);
+                end[l] = last;
                 for a in 0..3 {
                     (x[a][l], v[a][l], zeta[a][l], settling[a][l]) = (x0[a], v0[a], z0[a], body.settling[a]);
                     (lo[a][l], hi[a][l]) = free_bounds(p, a, body.contact);
@@ -122,7 +126,7 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
 
         if !(TURB || BROWN || vacant) && field.profile.is_none() {
             // Constant forcing: every lane flies freely until one is due for more than that.
-            let left = n.iter().map(|&n| p.steps - 1 - n).min().unwrap_or(0);
+            let left = n.iter().zip(&end).map(|(&n, &end)| end - 1 - n).min().unwrap_or(0);
             let mut v_inf = [[0.0; WIDTH]; 3];
             for a in 0..3 {
                 for l in 0..WIDTH {
@@ -154,8 +158,8 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
         // the particle's last step. It is what the general path below does in that case.
         if !vacant {
             let mut plain = ends_free::<AVX2>(&x1, &v1, &lo, &hi);
-            for &n in &n {
-                plain &= n + 1 < p.steps;
+            for (&n, &end) in n.iter().zip(&end) {
+                plain &= n + 1 < end;
             }
             if plain {
                 (x, v) = (x1, v1);
@@ -215,8 +219,9 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
                 }
             };
             let done = done.or_else(|| {
-                (n[l] == p.steps).then(|| {
-                    record(lane, Fate::Airborne, p.steps as f64 * dt, [x[0][l], x[1][l], x[2][l]], p.steps as u64)
+                (n[l] == end[l]).then(|| {
+                    let fate = if end[l] < p.steps { Fate::Exhausted } else { Fate::Airborne };
+                    record(lane, fate, end[l] as f64 * dt, [x[0][l], x[1][l], x[2][l]], end[l] as u64)
                 })
             });
             if let Some(rec) = done {
