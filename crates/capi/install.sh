@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Installs libdepo for C, C++ and Fortran solvers:
-#   PREFIX/lib/libdepo.{so,a}, PREFIX/lib/pkgconfig/depo.pc,
+#   PREFIX/lib/libdepo.so.VERSION, with the links libdepo.so.SOVERSION (the SONAME) and
+#   libdepo.so, PREFIX/lib/libdepo.a, PREFIX/lib/pkgconfig/depo.pc,
 #   PREFIX/include/depo.h, depo.hpp, PREFIX/share/depo/fortran/depo.f90
 # Usage: crates/capi/install.sh PREFIX [LIBDIR]
 #   LIBDIR holds libdepo.so and libdepo.a already built (default: builds them with
 #   `cargo build --release -p depo-capi` and takes target/release).
+# depo.pc puts PREFIX/lib on the program's run path (-Wl,-rpath), so programs linked with
+# `pkg-config --libs depo` start without LD_LIBRARY_PATH.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 prefix="${1:?usage: install.sh PREFIX [LIBDIR]}"
@@ -13,9 +16,19 @@ if [ -z "$libdir" ]; then
   (cd "$here/../.." && cargo build --release -p depo-capi)
   libdir="$here/../../target/release"
 fi
+mkdir -p "$prefix"
+prefix="$(cd "$prefix" && pwd)"
 version="$(sed -n 's/^version = "\(.*\)"/\1/p' "$here/../../Cargo.toml" | head -n 1)"
+# The SONAME's version, as crates/capi/build.rs sets it: the major version, or 0.MINOR before 1.0.
+major="${version%%.*}"
+minor="$(echo "$version" | cut -d. -f2)"
+if [ "$major" = 0 ]; then soversion="0.$minor"; else soversion="$major"; fi
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include" "$prefix/share/depo/fortran"
-cp "$libdir/libdepo.so" "$libdir/libdepo.a" "$prefix/lib/"
+rm -f "$prefix/lib/libdepo.so" "$prefix/lib/libdepo.so.$soversion"
+install -m 0755 "$libdir/libdepo.so" "$prefix/lib/libdepo.so.$version"
+ln -s "libdepo.so.$version" "$prefix/lib/libdepo.so.$soversion"
+ln -s "libdepo.so.$soversion" "$prefix/lib/libdepo.so"
+cp "$libdir/libdepo.a" "$prefix/lib/"
 cp "$here/include/depo.h" "$here/include/depo.hpp" "$prefix/include/"
 cp "$here/fortran/depo.f90" "$prefix/share/depo/fortran/"
 sed -e "s|@PREFIX@|$prefix|" -e "s|@VERSION@|$version|" "$here/depo.pc.in" > "$prefix/lib/pkgconfig/depo.pc"

@@ -30,6 +30,13 @@ fn libdir() -> &'static Path {
         let status = build.status().expect("cargo build -p depo-capi");
         assert!(status.success(), "building libdepo failed");
         assert!(profile_dir.join("libdepo.so").exists() && profile_dir.join("libdepo.a").exists());
+        // Programs linked against libdepo.so ask for its SONAME at run time: give it that name
+        // here too, as install.sh does in a prefix.
+        let soname = profile_dir.join(env!("DEPO_SONAME"));
+        if std::fs::read_link(&soname).is_err() {
+            let _ = std::fs::remove_file(&soname);
+            std::os::unix::fs::symlink("libdepo.so", &soname).expect("link the SONAME to libdepo.so");
+        }
         profile_dir
     })
 }
@@ -173,26 +180,49 @@ fn c_example_links_statically() {
     check_report(&String::from_utf8_lossy(&run(Command::new(&exe).arg("2000")).stdout));
 }
 
+/// The dynamic section of an ELF file, as `readelf -d` prints it.
+fn dynamic_section(file: &Path) -> String {
+    String::from_utf8(run(Command::new("readelf").arg("-d").arg(file)).stdout).unwrap()
+}
+
+/// Installs into a fresh prefix, links the C example with nothing but `pkg-config --cflags
+/// --libs depo`, and runs it without `LD_LIBRARY_PATH`: what a user of the README does.
 #[test]
-fn installed_library_is_found_by_pkg_config() {
-    if !have("cc") || !have("pkg-config") {
+fn installed_library_links_with_pkg_config_and_runs() {
+    if !have("cc") || !have("pkg-config") || !have("readelf") {
         return;
     }
-    let prefix = out_dir("install").join("prefix");
+    let dir = out_dir("install");
+    let prefix = dir.join("prefix");
+    let _ = std::fs::remove_dir_all(&prefix);
     run(Command::new("bash").arg(root().join("crates/capi/install.sh")).arg(&prefix).arg(libdir()));
-    let pc_path = prefix.join("lib/pkgconfig");
+    let lib = prefix.join("lib");
+    let soname = env!("DEPO_SONAME");
+
+    // The library carries its SONAME, installed as the versioned file with the two links.
+    let real = lib.join(format!("libdepo.so.{}", env!("CARGO_PKG_VERSION")));
+    assert!(dynamic_section(&real).contains(&format!("Library soname: [{soname}]")), "{}", dynamic_section(&real));
+    assert_eq!(std::fs::read_link(lib.join(soname)).unwrap(), Path::new(real.file_name().unwrap()));
+    assert_eq!(std::fs::read_link(lib.join("libdepo.so")).unwrap(), Path::new(soname));
+
+    let pc_path = lib.join("pkgconfig");
     let flags = run(Command::new("pkg-config").env("PKG_CONFIG_PATH", &pc_path).args(["--cflags", "--libs", "depo"]));
     let flags = String::from_utf8(flags.stdout).unwrap();
     let version = run(Command::new("pkg-config").env("PKG_CONFIG_PATH", &pc_path).args(["--modversion", "depo"]));
     assert_eq!(String::from_utf8(version.stdout).unwrap().trim(), env!("CARGO_PKG_VERSION"));
-    let exe = out_dir("install").join("box");
+    let exe = dir.join("box");
     run(c_flags(Command::new("cc").args(["-std=c11", &include("examples/c")]))
         .arg(root().join("examples/c/box.c"))
         .args(flags.split_whitespace())
-        .arg(format!("-Wl,-rpath,{}", prefix.join("lib").display()))
         .args(["-lm", "-o"])
         .arg(&exe));
-    check_report(&String::from_utf8_lossy(&run(Command::new(&exe).arg("2000")).stdout));
+
+    // The program asks for the SONAME and finds it in the prefix by itself.
+    let dynamic = dynamic_section(&exe);
+    assert!(dynamic.contains(&format!("Shared library: [{soname}]")), "{dynamic}");
+    assert!(dynamic.contains(&lib.display().to_string()), "no run path to {}:\n{dynamic}", lib.display());
+    let out = run(Command::new(&exe).env_remove("LD_LIBRARY_PATH").arg("2000"));
+    check_report(&String::from_utf8_lossy(&out.stdout));
 }
 
 #[test]
