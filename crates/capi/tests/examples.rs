@@ -2,8 +2,10 @@
 //! also under valgrind, statically linked, and through pkg-config after `install.sh`; the
 //! headers compiled alone with every warning an error.
 //!
-//! A missing compiler or tool fails the test under CI (`CI` set; `.ci/run` installs them) and
-//! is reported and skipped elsewhere.
+//! A missing compiler or tool fails the test, with the package to install. Setting its
+//! `DEPO_SKIP_*` variable to 1 (`DEPO_SKIP_FORTRAN`, `DEPO_SKIP_MPI`, `DEPO_SKIP_VALGRIND`,
+//! `DEPO_SKIP_C`; see [`TOOLS`]) skips the tests that need it instead, each with a `SKIPPED`
+//! line on stderr: a skip is never a silent pass.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -47,14 +49,40 @@ fn out_dir(name: &str) -> PathBuf {
     dir
 }
 
-/// True if `tool` runs; otherwise fails under CI, or says why the test is skipped.
+/// The tools the examples need, the variable that skips the tests needing each when it is
+/// missing, and the Debian packages that provide it.
+const TOOLS: &[(&str, &str, &str)] = &[
+    ("cc", "DEPO_SKIP_C", "gcc"),
+    ("c++", "DEPO_SKIP_C", "g++"),
+    ("pkg-config", "DEPO_SKIP_C", "pkg-config"),
+    ("readelf", "DEPO_SKIP_C", "binutils"),
+    ("valgrind", "DEPO_SKIP_VALGRIND", "valgrind"),
+    ("gfortran", "DEPO_SKIP_FORTRAN", "gfortran"),
+    ("mpicc", "DEPO_SKIP_MPI", "libopenmpi-dev"),
+    ("mpirun", "DEPO_SKIP_MPI", "openmpi-bin"),
+];
+
+/// True if `tool` runs. A missing tool fails the test with what to install, unless the tool's
+/// `DEPO_SKIP_*` variable is set to 1: then the test says SKIPPED on stderr, where it shows
+/// without `--nocapture` (written to the stream itself, which the test harness does not
+/// capture), and returns without running the example.
 fn have(tool: &str) -> bool {
-    let found = Command::new(tool).arg("--version").output().is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(std::env::var_os("CI").is_none(), "{tool} is missing; .ci/run installs it");
-        eprintln!("skipping: {tool} is not installed (.ci/run installs it)");
+    if Command::new(tool).arg("--version").output().is_ok_and(|o| o.status.success()) {
+        return true;
     }
-    found
+    let &(_, skip, package) = TOOLS.iter().find(|t| t.0 == tool).unwrap_or_else(|| panic!("{tool} is not in TOOLS"));
+    let test = std::thread::current().name().unwrap_or("this test").to_string();
+    if std::env::var_os(skip).is_some_and(|v| v == "1") {
+        use std::io::Write;
+        let line = format!("SKIPPED {test}: {tool} is not installed ({skip}=1)\n");
+        let _ = std::io::stderr().write_all(line.as_bytes());
+        return false;
+    }
+    panic!(
+        "{tool} is not installed, so {test} cannot run: install it (on Debian and Ubuntu: \
+         apt-get install {package}; .ci/run installs every tool the tests need), or set {skip}=1 \
+         to skip the tests that need it"
+    );
 }
 
 fn run(cmd: &mut Command) -> Output {
@@ -288,4 +316,40 @@ fn mpi_example_runs_on_two_ranks() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("ranks 2 injected 6000"), "{stdout}");
     check_report(&stdout);
+}
+
+/// Without gfortran or mpicc on the path, the Fortran and MPI tests fail and say what to
+/// install; with their `DEPO_SKIP_*` variable set they pass and print a SKIPPED line that shows
+/// in the normal (captured) test output. Runs this test binary on those two tests with an empty
+/// `PATH`.
+#[test]
+fn missing_compilers_fail_or_are_skipped_visibly() {
+    let exe = std::env::current_exe().unwrap();
+    let empty = exe.parent().unwrap().join("depo-empty-path");
+    std::fs::create_dir_all(&empty).unwrap();
+    for (test, tool, skip) in [
+        ("fortran_example_runs", "gfortran", "DEPO_SKIP_FORTRAN"),
+        ("mpi_example_runs_on_two_ranks", "mpicc", "DEPO_SKIP_MPI"),
+    ] {
+        let child = |skipping: bool| {
+            let mut cmd = Command::new(&exe);
+            cmd.args([test, "--exact"]).env("PATH", &empty);
+            for &(_, var, _) in TOOLS {
+                cmd.env_remove(var);
+            }
+            if skipping {
+                cmd.env(skip, "1");
+            }
+            let out = cmd.output().unwrap();
+            let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+            (out.status.success(), String::from_utf8_lossy(&out.stderr).into_owned(), text)
+        };
+        let (passed, _, text) = child(false);
+        assert!(!passed, "{test} passed without {tool}:\n{text}");
+        assert!(text.contains(&format!("{tool} is not installed")) && text.contains("apt-get install"), "{text}");
+        assert!(text.contains(&format!("{skip}=1")), "the failure should name {skip}:\n{text}");
+        let (passed, stderr, text) = child(true);
+        assert!(passed, "{test} with {skip}=1 should pass:\n{text}");
+        assert!(stderr.contains(&format!("SKIPPED {test}: {tool} is not installed ({skip}=1)")), "{text}");
+    }
 }
