@@ -2,6 +2,7 @@
 # Installs libdepo for C, C++ and Fortran solvers:
 #   PREFIX/lib/libdepo.so.VERSION, with the links libdepo.so.SOVERSION (the SONAME) and
 #   libdepo.so, PREFIX/lib/libdepo.a, PREFIX/lib/pkgconfig/depo.pc,
+#   PREFIX/lib/cmake/depo/depoConfig.cmake and depoConfigVersion.cmake (target depo::depo),
 #   PREFIX/include/depo.h, depo.hpp, PREFIX/share/depo/fortran/depo.f90
 # Usage: crates/capi/install.sh PREFIX [LIBDIR]
 #   LIBDIR holds libdepo.so and libdepo.a already built (default: builds them with
@@ -23,7 +24,7 @@ version="$(sed -n 's/^version = "\(.*\)"/\1/p' "$here/../../Cargo.toml" | head -
 major="${version%%.*}"
 minor="$(echo "$version" | cut -d. -f2)"
 if [ "$major" = 0 ]; then soversion="0.$minor"; else soversion="$major"; fi
-mkdir -p "$prefix/lib/pkgconfig" "$prefix/include" "$prefix/share/depo/fortran"
+mkdir -p "$prefix/lib/pkgconfig" "$prefix/lib/cmake/depo" "$prefix/include" "$prefix/share/depo/fortran"
 rm -f "$prefix/lib/libdepo.so" "$prefix/lib/libdepo.so.$soversion"
 install -m 0755 "$libdir/libdepo.so" "$prefix/lib/libdepo.so.$version"
 ln -s "libdepo.so.$version" "$prefix/lib/libdepo.so.$soversion"
@@ -32,4 +33,7 @@ cp "$libdir/libdepo.a" "$prefix/lib/"
 cp "$here/include/depo.h" "$here/include/depo.hpp" "$prefix/include/"
 cp "$here/fortran/depo.f90" "$prefix/share/depo/fortran/"
 sed -e "s|@PREFIX@|$prefix|" -e "s|@VERSION@|$version|" "$here/depo.pc.in" > "$prefix/lib/pkgconfig/depo.pc"
+for f in depoConfig.cmake depoConfigVersion.cmake; do
+  sed -e "s|@VERSION@|$version|g" -e "s|@SONAME@|libdepo.so.$soversion|g" "$here/cmake/$f.in" > "$prefix/lib/cmake/depo/$f"
+done
 echo "installed depo $version in $prefix"

@@ -1,10 +1,10 @@
 //! The C, C++, Fortran and MPI examples, compiled against the real libdepo and run; the C one
-//! also under valgrind, statically linked, and through pkg-config after `install.sh`; the
-//! headers compiled alone with every warning an error.
+//! also under valgrind, statically linked, and after `install.sh` through pkg-config and
+//! through CMake's `find_package(depo)`; the headers compiled alone with every warning an error.
 //!
 //! A missing compiler or tool fails the test, with the package to install. Setting its
-//! `DEPO_SKIP_*` variable to 1 (`DEPO_SKIP_FORTRAN`, `DEPO_SKIP_MPI`, `DEPO_SKIP_VALGRIND`,
-//! `DEPO_SKIP_C`; see [`TOOLS`]) skips the tests that need it instead, each with a `SKIPPED`
+//! `DEPO_SKIP_*` variable to 1 (`DEPO_SKIP_FORTRAN`, `DEPO_SKIP_MPI`, `DEPO_SKIP_CMAKE`,
+//! `DEPO_SKIP_VALGRIND`, `DEPO_SKIP_C`; see [`TOOLS`]) skips the tests that need it instead, each with a `SKIPPED`
 //! line on stderr: a skip is never a silent pass.
 
 use std::path::{Path, PathBuf};
@@ -60,6 +60,7 @@ const TOOLS: &[(&str, &str, &str)] = &[
     ("gfortran", "DEPO_SKIP_FORTRAN", "gfortran"),
     ("mpicc", "DEPO_SKIP_MPI", "libopenmpi-dev"),
     ("mpirun", "DEPO_SKIP_MPI", "openmpi-bin"),
+    ("cmake", "DEPO_SKIP_CMAKE", "cmake"),
 ];
 
 /// True if `tool` runs. A missing tool fails the test with what to install, unless the tool's
@@ -251,6 +252,75 @@ fn installed_library_links_with_pkg_config_and_runs() {
     assert!(dynamic.contains(&lib.display().to_string()), "no run path to {}:\n{dynamic}", lib.display());
     let out = run(Command::new(&exe).env_remove("LD_LIBRARY_PATH").arg("2000"));
     check_report(&String::from_utf8_lossy(&out.stdout));
+}
+
+/// Installs into a fresh prefix and builds the C example as a CMake project would:
+/// `find_package(depo REQUIRED)` and `target_link_libraries(box depo::depo)` (and the static
+/// target), then runs both without `LD_LIBRARY_PATH`. A version from another ABI series is
+/// refused.
+#[test]
+fn installed_library_builds_with_cmake() {
+    if !have("cc") || !have("cmake") {
+        return;
+    }
+    let dir = out_dir("cmake");
+    let (prefix, project, build) = (dir.join("prefix"), dir.join("project"), dir.join("build"));
+    for d in [&prefix, &project, &build] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+    run(Command::new("bash").arg(root().join("crates/capi/install.sh")).arg(&prefix).arg(libdir()));
+    assert!(prefix.join("lib/cmake/depo/depoConfig.cmake").exists());
+    assert!(prefix.join("lib/cmake/depo/depoConfigVersion.cmake").exists());
+
+    let version = format!("{}.{}", env!("CARGO_PKG_VERSION_MAJOR"), env!("CARGO_PKG_VERSION_MINOR"));
+    let cmakelists = |requested: &str| {
+        format!(
+            "cmake_minimum_required(VERSION 3.16)\nproject(depo_box C)\n\
+             find_package(depo {requested} REQUIRED)\n\
+             add_executable(box \"{src}\")\n\
+             target_link_libraries(box PRIVATE depo::depo m)\n\
+             add_executable(box_static \"{src}\")\n\
+             target_link_libraries(box_static PRIVATE depo::depo_static m)\n",
+            src = root().join("examples/c/box.c").display()
+        )
+    };
+    std::fs::create_dir_all(&project).unwrap();
+    let configure = |requested: &str| {
+        std::fs::write(project.join("CMakeLists.txt"), cmakelists(requested)).unwrap();
+        let _ = std::fs::remove_dir_all(&build);
+        Command::new("cmake")
+            .arg("-S")
+            .arg(&project)
+            .arg("-B")
+            .arg(&build)
+            .arg(format!("-DCMAKE_PREFIX_PATH={}", prefix.display()))
+            .arg("-DCMAKE_C_FLAGS=-std=c11 -Wall -Wextra -Wpedantic -Werror")
+            .output()
+            .unwrap()
+    };
+
+    // Another ABI series is refused at configure time.
+    let other = configure(&format!("{}.{}", env!("CARGO_PKG_VERSION_MAJOR"), 99));
+    let stderr = String::from_utf8_lossy(&other.stderr);
+    assert!(!other.status.success() && stderr.contains("compatible"), "find_package(depo x.99) should fail:\n{stderr}");
+
+    let out = configure(&version);
+    assert!(
+        out.status.success(),
+        "cmake configure failed\nstdout:\n{}\nstderr:\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    run(Command::new("cmake").arg("--build").arg(&build));
+    for exe in ["box", "box_static"] {
+        let out = run(Command::new(build.join(exe)).env_remove("LD_LIBRARY_PATH").arg("2000"));
+        check_report(&String::from_utf8_lossy(&out.stdout));
+    }
+    if have("readelf") {
+        let dynamic = dynamic_section(&build.join("box"));
+        assert!(dynamic.contains(&format!("Shared library: [{}]", env!("DEPO_SONAME"))), "{dynamic}");
+        assert!(!dynamic_section(&build.join("box_static")).contains("libdepo"));
+    }
 }
 
 #[test]
