@@ -5,8 +5,11 @@
 #   PREFIX/lib/cmake/depo/depoConfig.cmake and depoConfigVersion.cmake (target depo::depo),
 #   PREFIX/include/depo.h, depo.hpp, PREFIX/share/depo/fortran/depo.f90
 # Usage: crates/capi/install.sh PREFIX [LIBDIR]
-#   LIBDIR holds libdepo.so and libdepo.a already built (default: builds them with
-#   `cargo build --release -p depo-capi` and takes target/release).
+#   LIBDIR holds libdepo.so and libdepo.a already built. By default they are taken from
+#   target/release after `cargo build --release --workspace --examples`: the README's one build
+#   for the CLI, the examples and libdepo, so after it this is a no-op. (Cargo unifies
+#   dependency features per command: `cargo build --release -p depo-capi` would compile the
+#   library's dependencies a second time.)
 # depo.pc puts PREFIX/lib on the program's run path (-Wl,-rpath), so programs linked with
 # `pkg-config --libs depo` start without LD_LIBRARY_PATH.
 set -euo pipefail
@@ -14,8 +17,11 @@ here="$(cd "$(dirname "$0")" && pwd)"
 prefix="${1:?usage: install.sh PREFIX [LIBDIR]}"
 libdir="${2:-}"
 if [ -z "$libdir" ]; then
-  (cd "$here/../.." && cargo build --release -p depo-capi)
-  libdir="$here/../../target/release"
+  root="$(cd "$here/../.." && pwd)"
+  (cd "$root" && cargo build --release --workspace --examples)
+  target="${CARGO_TARGET_DIR:-target}"
+  case "$target" in /*) ;; *) target="$root/$target" ;; esac
+  libdir="$target/release"
 fi
 mkdir -p "$prefix"
 prefix="$(cd "$prefix" && pwd)"
