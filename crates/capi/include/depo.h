@@ -63,7 +63,7 @@
 typedef struct DepoWallLaw DepoWallLaw;
 
 /**
- * The constants of the law (SI units; see MODEL.md): restitution velocities `k1, k2` (m/s),
+ * The constants of the law (SI units; see docs/MODEL.md): restitution velocities `k1, k2` (m/s),
  * adhesion velocities `kappa1, kappa2` (m/s), exponents `p, q`, capture velocity `vc` (m/s,
  * `<= 0`: never captured by speed), friction coefficient `mu`.
  */

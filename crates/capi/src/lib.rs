@@ -46,7 +46,7 @@ pub const DEPO_SKIPPED: u8 = 2;
 /// within 1e-4: untouched.
 pub const DEPO_INVALID: u8 = 3;
 
-/// The constants of the law (SI units; see MODEL.md): restitution velocities `k1, k2` (m/s),
+/// The constants of the law (SI units; see docs/MODEL.md): restitution velocities `k1, k2` (m/s),
 /// adhesion velocities `kappa1, kappa2` (m/s), exponents `p, q`, capture velocity `vc` (m/s,
 /// `<= 0`: never captured by speed), friction coefficient `mu`.
 #[repr(C)]

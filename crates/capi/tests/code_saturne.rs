@@ -3,8 +3,8 @@
 //! it recorded must be what depo's own `WallLaw` gives for the same incoming velocity and
 //! normal: the same outcome and the same outgoing velocity to round-off.
 //!
-//! Without Code_Saturne the test fails under CI (`CI` set; `.ci/run` installs it) and is
-//! reported and skipped elsewhere.
+//! Without Code_Saturne the test fails, saying what to install, unless `DEPO_SKIP_CODE_SATURNE`
+//! is 1: then it says SKIPPED on stderr (never a silent pass), as the example tests do.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -69,9 +69,17 @@ fn zone_laws(log: &str) -> HashMap<u32, (String, WallLaw)> {
 fn check_case_contacts_are_the_wall_law_to_round_off() {
     let found = Command::new("code_saturne").args(["info", "--version"]).output().is_ok_and(|o| o.status.success());
     if !found {
-        assert!(std::env::var_os("CI").is_none(), "code_saturne is missing; .ci/run installs it");
-        eprintln!("SKIPPED: Code_Saturne is not installed (apt-get install code-saturne code-saturne-include)");
-        return;
+        if std::env::var_os("DEPO_SKIP_CODE_SATURNE").is_some_and(|v| v == "1") {
+            // Written to the stream itself: the test harness captures `eprintln!`.
+            use std::io::Write;
+            let line = "SKIPPED check_case_contacts_are_the_wall_law_to_round_off: code_saturne is not installed (DEPO_SKIP_CODE_SATURNE=1)\n";
+            let _ = std::io::stderr().write_all(line.as_bytes());
+            return;
+        }
+        panic!(
+            "code_saturne is not installed: install it (on Debian: apt-get install code-saturne \
+             code-saturne-include; .ci/run does), or set DEPO_SKIP_CODE_SATURNE=1 to skip this test"
+        );
     }
     let lib = libdir();
     let work = lib.join("code-saturne");

@@ -1,9 +1,11 @@
 //! The C, C++, Fortran and MPI examples, compiled against the real libdepo and run; the C one
-//! also under valgrind, statically linked, and through pkg-config after `install.sh`; the
-//! headers compiled alone with every warning an error.
+//! also under valgrind, statically linked, and after `install.sh` through pkg-config and
+//! through CMake's `find_package(depo)`; the headers compiled alone with every warning an error.
 //!
-//! A missing compiler or tool fails the test under CI (`CI` set; `.ci/run` installs them) and
-//! is reported and skipped elsewhere.
+//! A missing compiler or tool fails the test, with the package to install. Setting its
+//! `DEPO_SKIP_*` variable to 1 (`DEPO_SKIP_FORTRAN`, `DEPO_SKIP_MPI`, `DEPO_SKIP_CMAKE`,
+//! `DEPO_SKIP_VALGRIND`, `DEPO_SKIP_C`; see [`TOOLS`]) skips the tests that need it instead, each with a `SKIPPED`
+//! line on stderr: a skip is never a silent pass.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -30,6 +32,13 @@ fn libdir() -> &'static Path {
         let status = build.status().expect("cargo build -p depo-capi");
         assert!(status.success(), "building libdepo failed");
         assert!(profile_dir.join("libdepo.so").exists() && profile_dir.join("libdepo.a").exists());
+        // Programs linked against libdepo.so ask for its SONAME at run time: give it that name
+        // here too, as install.sh does in a prefix.
+        let soname = profile_dir.join(env!("DEPO_SONAME"));
+        if std::fs::read_link(&soname).is_err() {
+            let _ = std::fs::remove_file(&soname);
+            std::os::unix::fs::symlink("libdepo.so", &soname).expect("link the SONAME to libdepo.so");
+        }
         profile_dir
     })
 }
@@ -40,14 +49,41 @@ fn out_dir(name: &str) -> PathBuf {
     dir
 }
 
-/// True if `tool` runs; otherwise fails under CI, or says why the test is skipped.
+/// The tools the examples need, the variable that skips the tests needing each when it is
+/// missing, and the Debian packages that provide it.
+const TOOLS: &[(&str, &str, &str)] = &[
+    ("cc", "DEPO_SKIP_C", "gcc"),
+    ("c++", "DEPO_SKIP_C", "g++"),
+    ("pkg-config", "DEPO_SKIP_C", "pkg-config"),
+    ("readelf", "DEPO_SKIP_C", "binutils"),
+    ("valgrind", "DEPO_SKIP_VALGRIND", "valgrind"),
+    ("gfortran", "DEPO_SKIP_FORTRAN", "gfortran"),
+    ("mpicc", "DEPO_SKIP_MPI", "libopenmpi-dev"),
+    ("mpirun", "DEPO_SKIP_MPI", "openmpi-bin"),
+    ("cmake", "DEPO_SKIP_CMAKE", "cmake"),
+];
+
+/// True if `tool` runs. A missing tool fails the test with what to install, unless the tool's
+/// `DEPO_SKIP_*` variable is set to 1: then the test says SKIPPED on stderr, where it shows
+/// without `--nocapture` (written to the stream itself, which the test harness does not
+/// capture), and returns without running the example.
 fn have(tool: &str) -> bool {
-    let found = Command::new(tool).arg("--version").output().is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(std::env::var_os("CI").is_none(), "{tool} is missing; .ci/run installs it");
-        eprintln!("skipping: {tool} is not installed (.ci/run installs it)");
+    if Command::new(tool).arg("--version").output().is_ok_and(|o| o.status.success()) {
+        return true;
     }
-    found
+    let &(_, skip, package) = TOOLS.iter().find(|t| t.0 == tool).unwrap_or_else(|| panic!("{tool} is not in TOOLS"));
+    let test = std::thread::current().name().unwrap_or("this test").to_string();
+    if std::env::var_os(skip).is_some_and(|v| v == "1") {
+        use std::io::Write;
+        let line = format!("SKIPPED {test}: {tool} is not installed ({skip}=1)\n");
+        let _ = std::io::stderr().write_all(line.as_bytes());
+        return false;
+    }
+    panic!(
+        "{tool} is not installed, so {test} cannot run: install it (on Debian and Ubuntu: \
+         apt-get install {package}; .ci/run installs every tool the tests need), or set {skip}=1 \
+         to skip the tests that need it"
+    );
 }
 
 fn run(cmd: &mut Command) -> Output {
@@ -173,26 +209,118 @@ fn c_example_links_statically() {
     check_report(&String::from_utf8_lossy(&run(Command::new(&exe).arg("2000")).stdout));
 }
 
+/// The dynamic section of an ELF file, as `readelf -d` prints it.
+fn dynamic_section(file: &Path) -> String {
+    String::from_utf8(run(Command::new("readelf").arg("-d").arg(file)).stdout).unwrap()
+}
+
+/// Installs into a fresh prefix, links the C example with nothing but `pkg-config --cflags
+/// --libs depo`, and runs it without `LD_LIBRARY_PATH`: what a user of the README does.
 #[test]
-fn installed_library_is_found_by_pkg_config() {
-    if !have("cc") || !have("pkg-config") {
+fn installed_library_links_with_pkg_config_and_runs() {
+    if !have("cc") || !have("pkg-config") || !have("readelf") {
         return;
     }
-    let prefix = out_dir("install").join("prefix");
+    let dir = out_dir("install");
+    let prefix = dir.join("prefix");
+    let _ = std::fs::remove_dir_all(&prefix);
     run(Command::new("bash").arg(root().join("crates/capi/install.sh")).arg(&prefix).arg(libdir()));
-    let pc_path = prefix.join("lib/pkgconfig");
+    let lib = prefix.join("lib");
+    let soname = env!("DEPO_SONAME");
+
+    // The library carries its SONAME, installed as the versioned file with the two links.
+    let real = lib.join(format!("libdepo.so.{}", env!("CARGO_PKG_VERSION")));
+    assert!(dynamic_section(&real).contains(&format!("Library soname: [{soname}]")), "{}", dynamic_section(&real));
+    assert_eq!(std::fs::read_link(lib.join(soname)).unwrap(), Path::new(real.file_name().unwrap()));
+    assert_eq!(std::fs::read_link(lib.join("libdepo.so")).unwrap(), Path::new(soname));
+
+    let pc_path = lib.join("pkgconfig");
     let flags = run(Command::new("pkg-config").env("PKG_CONFIG_PATH", &pc_path).args(["--cflags", "--libs", "depo"]));
     let flags = String::from_utf8(flags.stdout).unwrap();
     let version = run(Command::new("pkg-config").env("PKG_CONFIG_PATH", &pc_path).args(["--modversion", "depo"]));
     assert_eq!(String::from_utf8(version.stdout).unwrap().trim(), env!("CARGO_PKG_VERSION"));
-    let exe = out_dir("install").join("box");
+    let exe = dir.join("box");
     run(c_flags(Command::new("cc").args(["-std=c11", &include("examples/c")]))
         .arg(root().join("examples/c/box.c"))
         .args(flags.split_whitespace())
-        .arg(format!("-Wl,-rpath,{}", prefix.join("lib").display()))
         .args(["-lm", "-o"])
         .arg(&exe));
-    check_report(&String::from_utf8_lossy(&run(Command::new(&exe).arg("2000")).stdout));
+
+    // The program asks for the SONAME and finds it in the prefix by itself.
+    let dynamic = dynamic_section(&exe);
+    assert!(dynamic.contains(&format!("Shared library: [{soname}]")), "{dynamic}");
+    assert!(dynamic.contains(&lib.display().to_string()), "no run path to {}:\n{dynamic}", lib.display());
+    let out = run(Command::new(&exe).env_remove("LD_LIBRARY_PATH").arg("2000"));
+    check_report(&String::from_utf8_lossy(&out.stdout));
+}
+
+/// Installs into a fresh prefix and builds the C example as a CMake project would:
+/// `find_package(depo REQUIRED)` and `target_link_libraries(box depo::depo)` (and the static
+/// target), then runs both without `LD_LIBRARY_PATH`. A version from another ABI series is
+/// refused.
+#[test]
+fn installed_library_builds_with_cmake() {
+    if !have("cc") || !have("cmake") {
+        return;
+    }
+    let dir = out_dir("cmake");
+    let (prefix, project, build) = (dir.join("prefix"), dir.join("project"), dir.join("build"));
+    for d in [&prefix, &project, &build] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+    run(Command::new("bash").arg(root().join("crates/capi/install.sh")).arg(&prefix).arg(libdir()));
+    assert!(prefix.join("lib/cmake/depo/depoConfig.cmake").exists());
+    assert!(prefix.join("lib/cmake/depo/depoConfigVersion.cmake").exists());
+
+    let version = format!("{}.{}", env!("CARGO_PKG_VERSION_MAJOR"), env!("CARGO_PKG_VERSION_MINOR"));
+    let cmakelists = |requested: &str| {
+        format!(
+            "cmake_minimum_required(VERSION 3.16)\nproject(depo_box C)\n\
+             find_package(depo {requested} REQUIRED)\n\
+             add_executable(box \"{src}\")\n\
+             target_link_libraries(box PRIVATE depo::depo m)\n\
+             add_executable(box_static \"{src}\")\n\
+             target_link_libraries(box_static PRIVATE depo::depo_static m)\n",
+            src = root().join("examples/c/box.c").display()
+        )
+    };
+    std::fs::create_dir_all(&project).unwrap();
+    let configure = |requested: &str| {
+        std::fs::write(project.join("CMakeLists.txt"), cmakelists(requested)).unwrap();
+        let _ = std::fs::remove_dir_all(&build);
+        Command::new("cmake")
+            .arg("-S")
+            .arg(&project)
+            .arg("-B")
+            .arg(&build)
+            .arg(format!("-DCMAKE_PREFIX_PATH={}", prefix.display()))
+            .arg("-DCMAKE_C_FLAGS=-std=c11 -Wall -Wextra -Wpedantic -Werror")
+            .output()
+            .unwrap()
+    };
+
+    // Another ABI series is refused at configure time.
+    let other = configure(&format!("{}.{}", env!("CARGO_PKG_VERSION_MAJOR"), 99));
+    let stderr = String::from_utf8_lossy(&other.stderr);
+    assert!(!other.status.success() && stderr.contains("compatible"), "find_package(depo x.99) should fail:\n{stderr}");
+
+    let out = configure(&version);
+    assert!(
+        out.status.success(),
+        "cmake configure failed\nstdout:\n{}\nstderr:\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    run(Command::new("cmake").arg("--build").arg(&build));
+    for exe in ["box", "box_static"] {
+        let out = run(Command::new(build.join(exe)).env_remove("LD_LIBRARY_PATH").arg("2000"));
+        check_report(&String::from_utf8_lossy(&out.stdout));
+    }
+    if have("readelf") {
+        let dynamic = dynamic_section(&build.join("box"));
+        assert!(dynamic.contains(&format!("Shared library: [{}]", env!("DEPO_SONAME"))), "{dynamic}");
+        assert!(!dynamic_section(&build.join("box_static")).contains("libdepo"));
+    }
 }
 
 #[test]
@@ -258,4 +386,40 @@ fn mpi_example_runs_on_two_ranks() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("ranks 2 injected 6000"), "{stdout}");
     check_report(&stdout);
+}
+
+/// Without gfortran or mpicc on the path, the Fortran and MPI tests fail and say what to
+/// install; with their `DEPO_SKIP_*` variable set they pass and print a SKIPPED line that shows
+/// in the normal (captured) test output. Runs this test binary on those two tests with an empty
+/// `PATH`.
+#[test]
+fn missing_compilers_fail_or_are_skipped_visibly() {
+    let exe = std::env::current_exe().unwrap();
+    let empty = exe.parent().unwrap().join("depo-empty-path");
+    std::fs::create_dir_all(&empty).unwrap();
+    for (test, tool, skip) in [
+        ("fortran_example_runs", "gfortran", "DEPO_SKIP_FORTRAN"),
+        ("mpi_example_runs_on_two_ranks", "mpicc", "DEPO_SKIP_MPI"),
+    ] {
+        let child = |skipping: bool| {
+            let mut cmd = Command::new(&exe);
+            cmd.args([test, "--exact"]).env("PATH", &empty);
+            for &(_, var, _) in TOOLS {
+                cmd.env_remove(var);
+            }
+            if skipping {
+                cmd.env(skip, "1");
+            }
+            let out = cmd.output().unwrap();
+            let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+            (out.status.success(), String::from_utf8_lossy(&out.stderr).into_owned(), text)
+        };
+        let (passed, _, text) = child(false);
+        assert!(!passed, "{test} passed without {tool}:\n{text}");
+        assert!(text.contains(&format!("{tool} is not installed")) && text.contains("apt-get install"), "{text}");
+        assert!(text.contains(&format!("{skip}=1")), "the failure should name {skip}:\n{text}");
+        let (passed, stderr, text) = child(true);
+        assert!(passed, "{test} with {skip}=1 should pass:\n{text}");
+        assert!(stderr.contains(&format!("SKIPPED {test}: {tool} is not installed ({skip}=1)")), "{text}");
+    }
 }

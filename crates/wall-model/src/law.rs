@@ -16,7 +16,7 @@
 //! and `e` costs one division. The clamp at `BIG` changes `R` and `rho` only where they are below
 //! `1/BIG` anyway.
 //!
-//! **Capture rule** (MODEL.md): an impact is captured when `vc > 0` and `|vn| <= vc`, or
+//! **Capture rule** (docs/MODEL.md): an impact is captured when `vc > 0` and `|vn| <= vc`, or
 //! whenever the law gives `e <= 0` (possible when `kappa1 > kappa2`, where `rho` exceeds 1).
 //! The paper's `|vn - vc|` with `vn < 0` never reaches `rho = 1`; its intent, capture where
 //! `|vn| = vc` (Eq. 14), is `u = |vn| - vc`. A captured impact reports `rho = 1` and `e = 0`.

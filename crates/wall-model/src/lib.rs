@@ -30,7 +30,7 @@
 //! [`WallLaw`] ties them together: a validated law with [`WallLaw::coefficients`] for curves,
 //! [`WallLaw::impact`] for one particle and [`WallLaw::apply`] for a batch. All quantities are
 //! SI: m/s, rad/s, m, J/kg. The physics contract, with the conventions the paper leaves open,
-//! is the project's `MODEL.md`; every choice beyond it is documented where it is made.
+//! is the project's `docs/MODEL.md`; every choice beyond it is documented where it is made.
 //!
 //! ## Moving a case over from another CFD code
 //!

@@ -160,7 +160,7 @@ mod tests {
             (140e-6, preset("sim-140um").unwrap()),
         ];
         let s = fit_size_scaling(&rows).unwrap();
-        // MODEL.md: vc ~ d^-1.51, kappa ~ d^-1.69; k stays near 12 m/s (12.7, 12.5, 11.8: a
+        // docs/MODEL.md: vc ~ d^-1.51, kappa ~ d^-1.69; k stays near 12 m/s (12.7, 12.5, 11.8: a
         // least-squares slope of -0.053 in log-log).
         assert!((s.vc.exponent + 1.51).abs() < 0.01, "vc exponent {}", s.vc.exponent);
         assert!((s.kappa.exponent + 1.69).abs() < 0.02, "kappa exponent {}", s.kappa.exponent);
