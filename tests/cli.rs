@@ -310,10 +310,47 @@ fn scene_file_errors_name_the_file_line_and_key() {
     std::fs::write(&transient, "[run]\ntransient = 1.5\n").unwrap();
     user_error(&["room", transient.to_str().unwrap(), "--no-plot"], "`run.transient` = 1.5");
     user_error(&["room", dir.join("missing.toml").to_str().unwrap()], "cannot read");
+    let both = dir.join("both.toml");
+    std::fs::write(&both, "[walls]\nfloor = { preset = \"li1997-sio2\", k = 12.5 }\n").unwrap();
+    user_error(&["room", both.to_str().unwrap(), "--no-plot"], "not both");
+    let partial = dir.join("partial.toml");
+    std::fs::write(&partial, "[walls]\nfloor = { k = 12.5, kappa = 0.065 }\n").unwrap();
+    user_error(&["room", partial.to_str().unwrap(), "--no-plot"], "`walls.floor.vc` is needed");
+    let negative = dir.join("negative.toml");
+    std::fs::write(&negative, "[walls]\nfloor = { k = -1.0, kappa = 0.065, vc = 0.07 }\n").unwrap();
+    user_error(&["room", negative.to_str().unwrap(), "--no-plot"], "walls.floor");
     let drag = dir.join("drag.toml");
     std::fs::write(&drag, "[run]\ndrag = \"newton\"\n").unwrap();
     user_error(&["channel", drag.to_str().unwrap()], "`run.drag` = \"newton\"");
     user_error(&["channel", "--tau-plus", "-1"], "--tau-plus");
+}
+
+/// A surface's own constants (as `depo fit` prints them) give the same room as the preset
+/// they come from, bit for bit.
+#[test]
+fn measured_constants_stand_in_for_a_preset() {
+    let dir = scratch("constants");
+    let run = |floor: &str| {
+        let scene = dir.join("room.toml");
+        std::fs::write(
+            &scene,
+            format!(
+                "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [10e-6]\ncount = 200\n\
+                 [run]\nduration = 120.0\nexcursions = false\n[walls]\nfloor = {floor}\n"
+            ),
+        )
+        .unwrap();
+        ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"])["sizes"][0].clone()
+    };
+    let preset = run("{ behaviour = \"law\", preset = \"li1997-sio2\", mu = 0.3 }");
+    let constants = run("{ k = 12.5, kappa = 0.065, vc = 0.074, q = 0.5, mu = 0.3 }");
+    // Room air captures at its slow contacts; friction takes some of their energy.
+    let tally = &preset["wall_tally"];
+    assert!(
+        tally["captures"].as_u64().unwrap() > 0 && tally["energy_lost_friction"].as_f64().unwrap() > 0.0,
+        "{preset}"
+    );
+    assert_eq!(preset, constants);
 }
 
 #[test]

@@ -7,7 +7,7 @@ use std::path::Path;
 use depo::tracker::air::STANDARD_GRAVITY;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
 use depo::tracker::{Drag, Flow, Geometry, Scene, WallBehaviour};
-use depo::wall_model::{SizeDependence, WallLaw};
+use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
 
 use super::Error;
@@ -27,6 +27,13 @@ struct WallFile {
     /// "sink", "reflect" or "law".
     behaviour: Option<String>,
     preset: Option<String>,
+    /// A law's own constants instead of a preset, as `depo fit` prints them (m/s; `p` and `q`
+    /// default to 1).
+    k: Option<f64>,
+    kappa: Option<f64>,
+    vc: Option<f64>,
+    p: Option<f64>,
+    q: Option<f64>,
     mu: Option<f64>,
     size_exponent: Option<f64>,
     reference_diameter: Option<f64>,
@@ -184,12 +191,35 @@ fn apply_air(scene: &mut Scene, air: &AirFile) {
 
 fn wall_behaviour(name: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
     let key = |k: &str| format!("walls.{name}.{k}");
-    match file.behaviour.as_deref().unwrap_or(if file.preset.is_some() { "law" } else { "sink" }) {
+    let constants = [file.k, file.kappa, file.vc, file.p, file.q];
+    let has_constants = constants.iter().any(Option::is_some);
+    let default = if file.preset.is_some() || has_constants { "law" } else { "sink" };
+    match file.behaviour.as_deref().unwrap_or(default) {
         "sink" => Ok(WallBehaviour::Sink),
         "reflect" => Ok(WallBehaviour::Reflect),
         "law" => {
-            let id = file.preset.as_deref().ok_or_else(|| format!("`{}` is needed for a wall law", key("preset")))?;
-            let mut law = WallLaw::preset(id).map_err(|e| format!("`{}`: {e}", key("preset")))?;
+            let mut law = match (file.preset.as_deref(), has_constants) {
+                (Some(_), true) => {
+                    return Err(format!(
+                        "`walls.{name}`: give a `preset` or the constants `k`, `kappa`, `vc`, not both"
+                    ))
+                }
+                (Some(id), false) => WallLaw::preset(id).map_err(|e| format!("`{}`: {e}", key("preset")))?,
+                (None, true) => {
+                    let need = |v: Option<f64>, k: &str| {
+                        v.ok_or_else(|| format!("`{}` is needed with the law's constants", key(k)))
+                    };
+                    let (k, kappa, vc) = (need(file.k, "k")?, need(file.kappa, "kappa")?, need(file.vc, "vc")?);
+                    let params = LawParams::symmetric(k, kappa, vc, file.p.unwrap_or(1.0), file.q.unwrap_or(1.0));
+                    WallLaw::new(params).map_err(|e| format!("`walls.{name}`: {e}"))?
+                }
+                (None, false) => {
+                    return Err(format!(
+                        "`{}` (or the constants `k`, `kappa`, `vc`) is needed for a wall law",
+                        key("preset")
+                    ))
+                }
+            };
             if let Some(mu) = file.mu {
                 law = WallLaw::new(law.params().with_friction(mu)).map_err(|e| format!("`{}`: {e}", key("mu")))?;
             }

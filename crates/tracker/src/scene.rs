@@ -135,7 +135,7 @@ pub struct Scene {
     /// Air-exchange rate `a`, 1/s (air changes per hour / 3600; 0, the default, for a closed
     /// room). Ventilation takes air from the well-mixed room: each airborne particle is
     /// exhausted at a rate `a`, wherever it is, so that without deposition the airborne
-    /// number falls as `exp(-a t)`, exactly at the ends of steps (see [`crate::run`]).
+    /// number falls as `exp(-a t)`, exactly at the ends of steps (see [`mod@crate::run`]).
     pub air_exchange: f64,
 }
 
