@@ -234,7 +234,7 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     let scene = dir.join("small.toml");
     std::fs::write(
         &scene,
-        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [3e-6, 10e-6]\ncount = 300\n\
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [3e-6, 10e-6]\ncount = 300\ntarget_error = 0.0\n\
          [run]\ndt = 0.05\nduration = 300.0\n[walls]\nfloor = { behaviour = \"law\", preset = \"dunn1995-stainless\" }\n",
     )
     .unwrap();
@@ -335,7 +335,7 @@ fn measured_constants_stand_in_for_a_preset() {
         std::fs::write(
             &scene,
             format!(
-                "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [10e-6]\ncount = 200\n\
+                "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [10e-6]\ncount = 200\ntarget_error = 0.0\n\
                  [run]\nduration = 120.0\nexcursions = false\n[walls]\nfloor = {floor}\n"
             ),
         )

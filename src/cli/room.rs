@@ -120,6 +120,8 @@ struct Row {
     indoor_outdoor: Option<Measured>,
     lai_nazaroff: Model,
     particle_steps: u64,
+    /// Particles run for this size.
+    particles: usize,
     /// "excursions" or "plain".
     method: &'static str,
     /// With excursions: the share of their weight given up at their longest duration.
@@ -148,6 +150,10 @@ struct Report<'a> {
     air_changes_per_hour: f64,
     penetration: f64,
     particles_per_size: usize,
+    /// With a target: the relative standard error each size was run to reach, and the most
+    /// particles it could take.
+    target_error: Option<f64>,
+    max_particles_per_size: usize,
     duration_s: f64,
     sizes: &'a [Row],
 }
@@ -168,6 +174,7 @@ fn row(p: &RoomPoint) -> Row {
             beta_per_hour: p.model_beta * 3600.0,
         },
         particle_steps: p.particle_steps,
+        particles: p.particles,
         method: if p.excursions.is_some() { "excursions" } else { "plain" },
         excursions_truncated: p.excursions,
         wall_tally: p.tally.into(),
@@ -209,6 +216,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 air_changes_per_hour: study.scene.air_exchange * 3600.0,
                 penetration: study.penetration,
                 particles_per_size: study.count,
+                target_error: study.target_error,
+                max_particles_per_size: study.max_count,
                 duration_s: study.scene.duration,
                 sizes: &rows,
             };
@@ -261,15 +270,24 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             )?;
         }
         Format::Table => {
+            let particles: Vec<String> = rows.iter().map(|r| r.particles.to_string()).collect();
             out!(
                 "Room {} x {} x {} m, u* = {} m/s, {} particles per size, {} s; deposition velocity (m/s) per surface",
                 size[0],
                 size[1],
                 size[2],
                 u_star,
-                study.count,
+                particles.join("/"),
                 study.scene.duration
             );
+            if let Some(target) = study.target_error {
+                out!(
+                    "({} first, more up to {} where beta or a surface with Lai & Nazaroff's v_d >= 1e-7 m/s was above {} % error.)",
+                    study.count,
+                    study.max_count,
+                    100.0 * target
+                );
+            }
             out!("beside Lai & Nazaroff (2000) for the same u*; ratio = beta / Lai & Nazaroff's beta.");
             if ventilated {
                 out!(

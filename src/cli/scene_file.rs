@@ -91,6 +91,9 @@ struct RoomFlowFile {
 struct RoomParticles {
     diameters: Option<Vec<f64>>,
     count: Option<usize>,
+    /// 0 turns the target off.
+    target_error: Option<f64>,
+    max_count: Option<usize>,
     density: Option<f64>,
 }
 
@@ -315,6 +318,16 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
     check_transient(path, study.transient)?;
     set(&mut study.diameters, file.particles.diameters);
     set(&mut study.count, file.particles.count);
+    set(&mut study.max_count, file.particles.max_count);
+    if let Some(target) = file.particles.target_error {
+        if !(target.is_finite() && target >= 0.0) {
+            return Err(format!(
+                "{}: `particles.target_error` = {target} must be finite and not negative",
+                path.display()
+            ));
+        }
+        study.target_error = (target > 0.0).then_some(target);
+    }
     set(&mut study.density, file.particles.density);
     if let Some(ach) = file.ventilation.air_changes_per_hour {
         if !(ach.is_finite() && ach >= 0.0) {

@@ -60,6 +60,6 @@ pub use air::{Aerodynamics, Air};
 pub use excursions::{Excursions, Splitting};
 pub use flow::Flow;
 pub use geometry::{Geometry, Orientation, Wall};
-pub use run::{run, Balance, Estimate, Run};
+pub use run::{run, run_more, Balance, Estimate, Run};
 pub use scene::{Drag, Injection, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 pub use track::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};

@@ -40,43 +40,8 @@ pub const MAX_STEP_GRADIENT: f64 = 0.05;
 /// below [`MAX_STEP_GRADIENT`] over the tabulated rms profiles: an error names `dt`
 /// otherwise.
 pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
-    scene.validate(injection)?;
-    let prepared = Prepared::new(scene, injection);
-    if scene.dt * prepared.field.steepest_gradient() > MAX_STEP_GRADIENT {
-        return Err(SceneError::new(
-            "dt",
-            scene.dt,
-            "is too long for the turbulence: dt times the steepest gradient of a velocity fluctuation's rms must be at most 0.05",
-        ));
-    }
-    let wall_count = prepared.walls.len();
-    let window = prepared.window;
-    let chunks: Vec<(Vec<Record>, Vec<ParticleTally>, Vec<WallTally>)> = (0..injection.count.div_ceil(CHUNK))
-        .into_par_iter()
-        .map(|c| {
-            let mut tally = vec![WallTally::default(); wall_count];
-            let ids = c * CHUNK..((c + 1) * CHUNK).min(injection.count);
-            let (records, particles) = match &scene.excursions {
-                Some(excursions) => track_excursions(&prepared, excursions, ids, &mut tally),
-                None => {
-                    let records = track(&prepared, ids, &mut tally);
-                    let particles = records.iter().map(|r| ParticleTally::of(r, window)).collect();
-                    (records, particles)
-                }
-            };
-            (records, particles, tally)
-        })
-        .collect();
-    let mut records = Vec::with_capacity(injection.count);
-    let mut particles = Vec::with_capacity(injection.count);
-    let mut tallies = vec![WallTally::default(); wall_count];
-    for (r, p, t) in chunks {
-        records.extend(r);
-        particles.extend(p);
-        for (sum, x) in tallies.iter_mut().zip(t) {
-            *sum += x;
-        }
-    }
+    let prepared = prepare(scene, injection)?;
+    let (records, particles, tallies) = track_range(scene, &prepared, 0..injection.count);
     let duration = prepared.steps as f64 * scene.dt;
     let smallest_weight =
         scene.excursions.as_ref().map_or(1.0, |e| e.splitting.weight(e.splitting.levels.len()) / e.sampling);
@@ -87,9 +52,81 @@ pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
         walls: prepared.walls,
         volume: scene.geometry.volume(),
         duration,
-        window,
+        window: prepared.window,
         smallest_weight,
     })
+}
+
+/// `previous`, a run of `scene` with the first particles of `injection`, carried on to all
+/// `injection.count` of them: the particles it lacks are tracked and added. The result is
+/// the run of the whole injection, particle for particle (each particle's history depends
+/// on its id and the seed alone); the tallies' sums may differ from it in the last bits.
+pub fn run_more(scene: &Scene, injection: &Injection, mut previous: Run) -> Result<Run, SceneError> {
+    let prepared = prepare(scene, injection)?;
+    let done = previous.records.len();
+    if done > injection.count {
+        return Err(SceneError::new("count", injection.count as f64, "is fewer than the particles already run"));
+    }
+    let (records, particles, tallies) = track_range(scene, &prepared, done..injection.count);
+    previous.records.extend(records);
+    previous.particles.extend(particles);
+    for (sum, x) in previous.tallies.iter_mut().zip(tallies) {
+        *sum += x;
+    }
+    Ok(previous)
+}
+
+/// The scene validated and prepared for `injection`.
+fn prepare<'a>(scene: &'a Scene, injection: &'a Injection) -> Result<Prepared<'a>, SceneError> {
+    scene.validate(injection)?;
+    let prepared = Prepared::new(scene, injection);
+    if scene.dt * prepared.field.steepest_gradient() > MAX_STEP_GRADIENT {
+        return Err(SceneError::new(
+            "dt",
+            scene.dt,
+            "is too long for the turbulence: dt times the steepest gradient of a velocity fluctuation's rms must be at most 0.05",
+        ));
+    }
+    Ok(prepared)
+}
+
+/// Tracks particles `ids` in chunks of [`CHUNK`] ids (fixed, whatever the thread count):
+/// their records and tallies in id order, and their wall tallies summed in chunk order.
+fn track_range(
+    scene: &Scene,
+    prepared: &Prepared<'_>,
+    ids: std::ops::Range<usize>,
+) -> (Vec<Record>, Vec<ParticleTally>, Vec<WallTally>) {
+    let wall_count = prepared.walls.len();
+    let window = prepared.window;
+    let first = ids.start;
+    let chunks: Vec<(Vec<Record>, Vec<ParticleTally>, Vec<WallTally>)> = (first / CHUNK..ids.end.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(|c| {
+            let mut tally = vec![WallTally::default(); wall_count];
+            let ids = (c * CHUNK).max(first)..((c + 1) * CHUNK).min(ids.end);
+            let (records, particles) = match &scene.excursions {
+                Some(excursions) => track_excursions(prepared, excursions, ids, &mut tally),
+                None => {
+                    let records = track(prepared, ids, &mut tally);
+                    let particles = records.iter().map(|r| ParticleTally::of(r, window)).collect();
+                    (records, particles)
+                }
+            };
+            (records, particles, tally)
+        })
+        .collect();
+    let mut records = Vec::with_capacity(ids.len());
+    let mut particles = Vec::with_capacity(ids.len());
+    let mut tallies = vec![WallTally::default(); wall_count];
+    for (r, p, t) in chunks {
+        records.extend(r);
+        particles.extend(p);
+        for (sum, x) in tallies.iter_mut().zip(t) {
+            *sum += x;
+        }
+    }
+    (records, particles, tallies)
 }
 
 /// A value with its standard error.

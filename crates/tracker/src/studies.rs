@@ -20,7 +20,7 @@ use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, woo
 use crate::excursions::Excursions;
 use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
-use crate::run::{run, Estimate};
+use crate::run::{run, run_more, Estimate, Run};
 use crate::scene::{Injection, Scene, SceneError, SizeDistribution};
 use crate::track::WallTally;
 
@@ -31,8 +31,17 @@ pub struct RoomStudy {
     pub scene: Scene,
     /// Particle diameters, m.
     pub diameters: Vec<f64>,
-    /// Particles per diameter.
+    /// Particles per diameter: all of them without `target_error`, the first ones with it.
     pub count: usize,
+    /// The relative standard error to resolve each size's figures to: `beta`, and the
+    /// deposition velocity onto each surface where Lai & Nazaroff's model gives at least
+    /// [`RESOLVED_FROM`] (the figures a room study is read for). When the first `count`
+    /// particles leave one of them less resolved, as many more are run (and pooled with them)
+    /// as its error, falling as `1 / sqrt(n)`, says it needs, times [`TARGET_MARGIN`], up
+    /// to `max_count` in all. `None`: `count` particles, whatever the errors.
+    pub target_error: Option<f64>,
+    /// The most particles per diameter with `target_error`.
+    pub max_count: usize,
     /// Particle density, kg/m^3.
     pub density: f64,
     /// Share of the run left out of the averages, in `[0, 1)`.
@@ -53,11 +62,21 @@ const STUDY_SAMPLING: f64 = 3.0;
 /// The studies' splitting calibration: run particles per pilot particle, and rounds.
 const PILOT: (usize, usize) = (4, 1);
 
-/// `scene` with the studies' excursions for `injection`, calibrated with factors up to `max`;
-/// `inner` and `max_duration` in wall units.
+/// The smallest deposition velocity (Lai & Nazaroff's, m/s) of a surface whose figure a room
+/// study resolves to its `target_error`: below it the surface takes a negligible share of the
+/// room's deposition.
+pub const RESOLVED_FROM: f64 = 1e-7;
+
+/// How many more particles than the first ones' errors say a room study runs to reach its
+/// `target_error`: a margin for the errors' own spread.
+pub const TARGET_MARGIN: f64 = 1.15;
+
+/// `scene` with the studies' excursions, calibrated by a pilot of `pilot` particles of
+/// `injection` with factors up to `max`; `inner` and `max_duration` in wall units.
 fn with_excursions(
     mut scene: Scene,
     injection: &Injection,
+    pilot: usize,
     inner: f64,
     max_duration: f64,
     max: u32,
@@ -66,9 +85,8 @@ fn with_excursions(
     if u_star > 0.0 {
         let nu = scene.air.kinematic_viscosity();
         let excursions = Excursions::in_wall_units(u_star, nu, inner, STUDY_SAMPLING, max_duration);
-        let (share, rounds) = PILOT;
-        scene.excursions =
-            Some(excursions.calibrated(&scene, injection, (injection.count / share).max(1), rounds, max)?);
+        let (_, rounds) = PILOT;
+        scene.excursions = Some(excursions.calibrated(&scene, injection, pilot.max(1), rounds, max)?);
     }
     Ok(scene)
 }
@@ -84,7 +102,9 @@ impl Default for RoomStudy {
         Self {
             scene,
             diameters: vec![0.01e-6, 0.03e-6, 0.1e-6, 0.3e-6, 1e-6, 3e-6, 10e-6],
-            count: 2000,
+            count: 1000,
+            target_error: Some(0.05),
+            max_count: 8000,
             density: 1000.0,
             transient: 0.1,
             excursions: true,
@@ -112,6 +132,8 @@ pub struct RoomPoint {
     pub model_beta: f64,
     /// Particle-steps the run took (of the tracked particles; excursions not included).
     pub particle_steps: u64,
+    /// Particles run (more than [`RoomStudy::count`] where its `target_error` needed them).
+    pub particles: usize,
     /// Whether deposits were counted by near-wall excursions, and if so the share of their
     /// weight given up at their longest duration ([`Run::truncated_share`](crate::Run::truncated_share)).
     pub excursions: Option<f64>,
@@ -142,6 +164,29 @@ fn total(tallies: &[WallTally]) -> WallTally {
 }
 
 impl RoomStudy {
+    /// The particles a size needs for its figures to reach `target` ([`RoomStudy::target_error`]),
+    /// from the errors of `first`'s: at least the particles already run, at most `max_count`.
+    fn needed(&self, first: &Run, model: &LaiNazaroff, target: f64) -> usize {
+        let n = first.records.len() as f64;
+        let mut figures = vec![first.loss_rate()];
+        for (orientation, reference) in
+            [(Orientation::Floor, model.floor), (Orientation::Ceiling, model.ceiling), (Orientation::Wall, model.wall)]
+        {
+            if reference >= RESOLVED_FROM {
+                figures.push(first.deposition_velocity(&first.walls_facing(orientation)));
+            }
+        }
+        let mut needed = n;
+        for e in figures {
+            needed = if e.events == 0 || e.value <= 0.0 {
+                self.max_count as f64
+            } else {
+                needed.max(n * (e.error / e.value / target).powi(2) * TARGET_MARGIN)
+            };
+        }
+        (needed.ceil() as usize).clamp(first.records.len(), self.max_count.max(first.records.len()))
+    }
+
     /// Runs every size; `progress` is told after each.
     pub fn run(&self, mut progress: impl FnMut(usize)) -> Result<Vec<RoomPoint>, SceneError> {
         if !(0.0..=1.0).contains(&self.penetration) {
@@ -157,12 +202,20 @@ impl RoomStudy {
             scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
             if self.excursions {
                 // Down to 0.05 wall units (75 um at u* = 1 cm/s), inside the Brownian sublayer
-                // of every size; given up after 16000 wall time units (2400 s at 1 cm/s).
-                scene = with_excursions(scene, &injection, 0.05, 16_000.0, 16)?;
+                // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
+                // pilot has 500 particles, or a quarter of a smaller first run.
+                let pilot = (self.count / PILOT.0).max(self.count.min(500));
+                scene = with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16)?;
             }
-            let result = run(&scene, &injection)?;
-            let v = |o| result.deposition_velocity(&result.walls_facing(o));
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
+            let mut result = run(&scene, &injection)?;
+            if let Some(target) = self.target_error {
+                let needed = self.needed(&result, &model, target);
+                if needed > self.count {
+                    result = run_more(&scene, &Injection { count: needed, ..injection }, result)?;
+                }
+            }
+            let v = |o| result.deposition_velocity(&result.walls_facing(o));
             let balance = result.balance();
             let beta = result.loss_rate();
             let a = scene.air_exchange;
@@ -185,6 +238,7 @@ impl RoomStudy {
                 model,
                 model_beta: model.loss_rate(size),
                 particle_steps: result.particle_steps(),
+                particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
                 tally: total(&result.tallies),
                 maps: (0..result.walls.len()).map(|w| result.deposition_map(w, size, MAP_BINS)).collect(),
@@ -294,7 +348,7 @@ impl ChannelStudy {
                 // Down to 0.02 wall units, given up after 10^4 wall time units; factors up to 4
                 // (larger ones made the deep branches, which live long in the Brownian
                 // sublayer, too many: 3-5 times the run time for the same error).
-                scene = with_excursions(scene, &injection, 0.02, 1e4, 4)?;
+                scene = with_excursions(scene, &injection, (count / PILOT.0).max(1), 0.02, 1e4, 4)?;
             }
             let result = run(&scene, &injection)?;
             let all: Vec<usize> = (0..result.walls.len()).collect();

@@ -31,7 +31,7 @@ fn channel_deposition_at_tau_plus_10_is_within_a_factor_2_of_wood() {
 /// per cent by the study's excursions.
 #[test]
 fn room_deposition_matches_lai_nazaroff_where_it_is_measurable() {
-    let study = RoomStudy { diameters: vec![0.01e-6, 3e-6], count: 600, ..RoomStudy::default() };
+    let study = RoomStudy { diameters: vec![0.01e-6, 3e-6], count: 600, target_error: None, ..RoomStudy::default() };
     let points = study.run(|_| {}).unwrap();
     let (ultrafine, coarse) = (&points[0], &points[1]);
     assert!(ultrafine.beta.error < 0.1 * ultrafine.beta.value, "{:?}", ultrafine.beta);
@@ -136,7 +136,8 @@ fn excursions_do_not_depend_on_the_thread_count() {
 /// that names it.
 #[test]
 fn ventilated_room_reports_the_indoor_outdoor_ratio() {
-    let mut study = RoomStudy { diameters: vec![3e-6], count: 200, penetration: 0.8, ..RoomStudy::default() };
+    let mut study =
+        RoomStudy { diameters: vec![3e-6], count: 200, penetration: 0.8, target_error: None, ..RoomStudy::default() };
     study.scene.duration = 600.0;
     study.scene.air_exchange = 2.0 / 3600.0;
     let point = &study.run(|_| {}).unwrap()[0];
@@ -150,4 +151,29 @@ fn ventilated_room_reports_the_indoor_outdoor_ratio() {
     assert!(study.run(|_| {}).unwrap()[0].indoor_outdoor.is_none());
     study.penetration = 1.5;
     assert_eq!(study.run(|_| {}).unwrap_err().field, "penetration");
+}
+
+/// With a target error, a room study runs more particles where the first ones leave a figure
+/// less resolved, and then resolves it: 3 um in a short run, floor and `beta` to 10 %.
+#[test]
+fn a_room_study_runs_more_particles_to_reach_its_target_error() {
+    let mut study = RoomStudy {
+        diameters: vec![3e-6],
+        count: 100,
+        target_error: Some(0.1),
+        max_count: 3000,
+        ..RoomStudy::default()
+    };
+    study.scene.duration = 600.0;
+    let point = &study.run(|_| {}).unwrap()[0];
+    assert!(point.particles > 100 && point.particles < 3000, "{}", point.particles);
+    // The errors fall as 1 / sqrt(n); the margin covers their own spread.
+    for e in [point.floor, point.beta] {
+        assert!(e.error < 0.11 * e.value, "{} particles: {e:?}", point.particles);
+    }
+    // Without a target, the first 100 alone, and less resolved.
+    study.target_error = None;
+    let first = &study.run(|_| {}).unwrap()[0];
+    assert_eq!(first.particles, 100);
+    assert!(first.floor.error / first.floor.value > point.floor.error / point.floor.value);
 }

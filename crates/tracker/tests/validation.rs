@@ -200,6 +200,31 @@ fn ventilation_alone_decays_at_the_exchange_rate() {
     }
 }
 
+/// A run carried on to more particles is the run of them all, particle for particle, with
+/// and without excursions; and the same wall tallies.
+#[test]
+fn a_run_carried_on_is_the_run_of_all_its_particles() {
+    let (scene, injection) = busy_room();
+    let whole = run(&scene, &injection).unwrap();
+    let first = run(&scene, &Injection { count: 1100, ..injection }).unwrap();
+    let more = depo_tracker::run_more(&scene, &injection, first).unwrap();
+    assert_eq!(more.records, whole.records);
+    assert_eq!(more.particles, whole.particles);
+    for (a, b) in more.tallies.iter().zip(&whole.tallies) {
+        assert_eq!((a.contacts, a.captures, a.rebounds, a.resting), (b.contacts, b.captures, b.rebounds, b.resting));
+    }
+    let mut split = scene.clone();
+    split.average_from = 5.0;
+    split.excursions = Some(depo_tracker::Excursions::in_wall_units(0.01, 1.5e-5, 0.05, 2.0, 2000.0));
+    let small = Injection { count: 300, ..injection };
+    let whole = run(&split, &small).unwrap();
+    let first = run(&split, &Injection { count: 100, ..small }).unwrap();
+    let more = depo_tracker::run_more(&split, &small, first).unwrap();
+    assert_eq!(more.particles, whole.particles);
+    assert!(more.particles.iter().any(|p| p.excursions > 0));
+    assert_eq!(depo_tracker::run_more(&split, &Injection { count: 50, ..small }, more).unwrap_err().field, "count");
+}
+
 /// The same seed gives the same run, bit for bit, on one thread and on two.
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
