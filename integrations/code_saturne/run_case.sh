@@ -21,7 +21,7 @@ mkdir -p "$work"
 cd "$work"
 code_saturne create -s study -c case >/dev/null
 cp "$case_dir"/SRC/* "$here/depo_code_saturne.c" "$here/depo_code_saturne.h" study/case/SRC/
-cp "$case_dir"/DATA/* study/case/DATA/
+cp "$case_dir"/DATA/* "$here/cs_user_scripts.py" study/case/DATA/
 mesh_args=$(cat "$case_dir/mesh_args")
 python3 "$here/box_mesh.py" study/MESH/box.msh $mesh_args
 cd study/case/DATA

@@ -1,4 +1,4 @@
-# Duct case: the box mesh written by ../box_mesh.py, and libdepo found through DEPO_PREFIX
+# Every case of this directory: the box mesh written by box_mesh.py, and libdepo found through DEPO_PREFIX
 # (an install prefix of libdepo: include/depo.h and lib/libdepo.so).
 import os
 
