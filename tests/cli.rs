@@ -543,13 +543,20 @@ fn capture_velocity_from_material_properties() {
     user_error(&bad, "--restitution");
 }
 
-/// With stdout piped and stderr a terminal, a long run shows its progress on stderr; with
-/// stderr captured (not a terminal) it writes no escape codes there. `script` (util-linux;
-/// Debian's bsdutils) gives the command a terminal.
+/// With stdout piped and stderr a terminal, a long run shows its progress on stderr from its
+/// start, before the first size is done; with stderr captured (not a terminal) it writes no
+/// escape codes there. `script` (util-linux; Debian's bsdutils) gives the command a terminal.
 #[test]
 fn progress_shows_on_the_terminal_when_stdout_is_piped() {
-    let binary = env!("CARGO_BIN_EXE_depo");
-    let command = format!("{binary} bench --n 20000 --reps 1 --filter 'p=1 q=1' --format json | wc -c");
+    let dir = scratch("progress");
+    let scene = dir.join("quick.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [10e-6]\ncount = 100\n[run]\nduration = 60.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let args = ["room", scene.to_str().unwrap(), "--no-plot", "--format", "csv"];
+    let command = format!("{} {} | wc -c", env!("CARGO_BIN_EXE_depo"), args.join(" "));
     let out = Command::new("script")
         .args(["-qec", &command, "/dev/null"])
         .env("TERM", "xterm")
@@ -557,7 +564,11 @@ fn progress_shows_on_the_terminal_when_stdout_is_piped() {
         .expect("`script` runs the command on a terminal: install util-linux (Debian: bsdutils)");
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{text}");
-    assert!(text.contains(" kernels "), "no progress on the terminal: {text}");
-    let captured = depo(&["bench", "--n", "20000", "--reps", "1", "--filter", "p=1 q=1", "--format", "json"]);
-    assert!(!captured.stderr.contains(&0x1b), "{}", String::from_utf8_lossy(&captured.stderr));
+    assert!(text.contains("0/1 sizes"), "no progress on the terminal before the first size: {text}");
+    let captured = depo(&args);
+    assert!(
+        captured.status.success() && !captured.stderr.contains(&0x1b),
+        "{}",
+        String::from_utf8_lossy(&captured.stderr)
+    );
 }
