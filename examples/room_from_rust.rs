@@ -1,4 +1,4 @@
-//! The README's tracker snippet, runnable: `cargo run --release --example room_from_rust`.
+//! The tracker snippet of `docs/tracker.md`, runnable: `cargo run --release --example room_from_rust`.
 
 use depo::tracker::{run, Flow, Geometry, Injection, Scene, SizeDistribution, WallBehaviour};
 use depo::wall_model::WallLaw;

@@ -396,7 +396,7 @@ pub fn measure(scenario: Scenario, pool: &ThreadPool, reps: usize) -> Measuremen
     }
 }
 
-/// The scenarios of the README's table at `n` impacts.
+/// The scenarios of the speed table (`docs/speed.md`) at `n` impacts.
 #[must_use]
 pub fn standard_scenarios(n: usize) -> Vec<Scenario> {
     let mut out = Vec::new();

@@ -26,6 +26,35 @@ fn user_error(args: &[&str], what: &str) {
     assert!(stderr.starts_with("depo: ") && stderr.contains(what), "{stderr}");
 }
 
+/// The texts of an SVG figure with their `y` positions (pixels from the top).
+fn svg_texts(svg: &str) -> Vec<(String, f64)> {
+    svg.split("<text")
+        .skip(1)
+        .map(|chunk| {
+            let y = chunk.split("y=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+            let body = chunk.split_once('>').unwrap().1.split("</text>").next().unwrap();
+            (body.trim().replace("&lt;", "<").replace("&amp;", "&"), y)
+        })
+        .collect()
+}
+
+/// The `y` of the legend entry `label`: the legend sits below the 500-pixel plot, where no
+/// data can be.
+fn legend_y(svg: &str, label: &str) -> f64 {
+    let texts = svg_texts(svg);
+    texts.iter().find(|t| t.0 == label).unwrap_or_else(|| panic!("no legend entry {label}: {texts:?}")).1
+}
+
+/// The number of points of each polyline of an SVG figure with the colour `stroke`, or of
+/// every colour but the axes' black when `stroke` is empty.
+fn polylines(svg: &str, stroke: &str) -> Vec<usize> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter(|p| if stroke.is_empty() { !p.contains("stroke=\"#000000\"") } else { p.contains(stroke) })
+        .map(|p| p.split("points=\"").nth(1).unwrap().split('"').next().unwrap().split_whitespace().count())
+        .collect()
+}
+
 #[test]
 fn presets_lists_table_1() {
     let rows = ok_json(&["presets", "--format", "json"]);
@@ -82,6 +111,8 @@ fn curve_writes_a_figure() {
     assert!(out.status.success());
     let svg = std::fs::read_to_string(&path).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("polyline") && svg.contains("|vn| (m/s)"));
+    // The legend is below the plot, not over the curves.
+    assert!(legend_y(&svg, "R") > 500.0 && legend_y(&svg, "e = R (1 - rho)") > 500.0);
     std::fs::remove_file(path).ok();
 }
 
@@ -219,6 +250,24 @@ fn figures_are_written() {
     }
     let fig8 = std::fs::read_to_string(dir.join("fig8-size.svg")).unwrap();
     assert!(fig8.contains("vc ~ d^-1.51") && fig8.contains("-5/6"));
+    // Every preset's e curve in a colour of its own, its legend entry below the plot; sim-70um
+    // has li1997-sio2's constants, so it is dashed (drawn in short pieces) and says so.
+    let curves = std::fs::read_to_string(dir.join("e-curves.svg")).unwrap();
+    let ids: Vec<&str> = depo::wall_model::PRESETS.iter().filter(|p| p.params.vc > 0.0).map(|p| p.id).collect();
+    let mut colours: Vec<&str> = curves
+        .split("<polyline")
+        .skip(1)
+        .filter_map(|p| p.split("stroke=\"").nth(1)?.split('"').next())
+        .filter(|c| *c != "#000000")
+        .collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert_eq!(colours.len(), ids.len(), "{colours:?}");
+    for id in &ids {
+        let label = if *id == "sim-70um" { "sim-70um (same constants as li1997-sio2)" } else { id };
+        assert!(legend_y(&curves, label) > 500.0, "{label}");
+    }
+    assert!(polylines(&curves, "").iter().filter(|&&n| n < 10).count() > 20, "the dashed curve's pieces");
     std::fs::remove_dir_all(dir).ok();
 }
 
@@ -266,9 +315,19 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     assert!((ten["deposited"]["floor_kg"].as_f64().unwrap() / (on_floor as f64 * mass) - 1.0).abs() < 1e-9);
     let mapped = |wall: &str| -> u64 {
         let map = std::fs::read_to_string(plots.join(format!("room-map-{wall}-10um.csv"))).unwrap();
-        assert_eq!(map.lines().count(), 20);
-        assert!(map.lines().all(|l| l.split(',').count() == 20));
-        map.lines().flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum()
+        // A header of `#` lines names the wall, the axes of rows and columns and the cell size.
+        let (header, cells): (Vec<&str>, Vec<&str>) = map.lines().partition(|l| l.starts_with('#'));
+        let header = header.join("\n");
+        assert!(header.contains(&format!("wall {wall} (")), "{header}");
+        let axes = match wall {
+            "floor" | "ceiling" => "rows: x from 0 to 1 m in 20 cells; columns: y from 0 to 1 m in 20 cells",
+            "x0" | "x1" => "rows: y from 0 to 1 m in 20 cells; columns: z from 0 to 1 m in 20 cells",
+            _ => "rows: x from 0 to 1 m in 20 cells; columns: z from 0 to 1 m in 20 cells",
+        };
+        assert!(header.contains(axes) && header.contains("cell size 0.05 m"), "{header}");
+        assert_eq!(cells.len(), 20);
+        assert!(cells.iter().all(|l| l.split(',').count() == 20));
+        cells.iter().flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum()
     };
     assert_eq!(mapped("floor"), on_floor, "the floor map holds every floor deposit of the run");
     let on_walls = ten["deposited"]["walls"].as_u64().unwrap();
@@ -278,6 +337,32 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     for figure in ["room-deposition.svg", "room-beta.svg"] {
         assert!(std::fs::read_to_string(plots.join(figure)).unwrap().contains("<svg"), "{figure}");
     }
+    // Lai & Nazaroff drawn on 100 sizes, not polylines through the study's two; the ceiling
+    // without a deposit shown at its upper bound, and the model's negligible ceiling named.
+    let deposition = std::fs::read_to_string(plots.join("room-deposition.svg")).unwrap();
+    assert!(polylines(&deposition, "").iter().filter(|&&n| n == 100).count() >= 2, "{:?}", polylines(&deposition, ""));
+    assert!(polylines(&std::fs::read_to_string(plots.join("room-beta.svg")).unwrap(), "").contains(&100));
+    assert_eq!(ten["ceiling"]["events"], 0);
+    assert!(legend_y(&deposition, "ceiling: no deposit, 95 % upper bound") > 500.0);
+    assert!(legend_y(&deposition, "ceiling (Lai & Nazaroff; below 1e-10 m/s not shown)") > 500.0);
+
+    // The same run (seeded) as CSV: deposit events per surface; as a table: unresolved
+    // figures flagged as in the JSON.
+    let csv = depo(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]);
+    let csv = String::from_utf8(csv.stdout).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let last: Vec<&str> = csv.lines().nth(2).unwrap().split(',').collect();
+    for key in ["floor", "ceiling", "walls"] {
+        let column = header.iter().position(|h| *h == format!("{key}_deposits")).expect("deposits column");
+        assert_eq!(last[column].parse::<u64>().unwrap(), ten[key]["events"].as_u64().unwrap(), "{key}");
+    }
+    let unresolved: Vec<&str> = ten["unresolved"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
+    assert!(unresolved.contains(&"ceiling"), "no deposit is unresolved: {unresolved:?}");
+    let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
+    let line = table.lines().find(|l| l.trim_start().starts_with("10.000")).unwrap();
+    assert_eq!(line.matches("]*").count(), unresolved.len(), "{line}");
+    assert!(line.contains("[0]*"), "{line}");
+    assert!(table.contains("* unresolved: no deposit event, or a relative standard error above 5 %"), "{table}");
 }
 
 #[test]
@@ -291,7 +376,10 @@ fn channel_reports_v_plus_beside_wood() {
     assert!((0.5..2.0).contains(&ratio), "{point}");
     assert!((point["v_plus"]["value"].as_f64().unwrap() / point["wood"].as_f64().unwrap() - ratio).abs() < 1e-12);
     assert_eq!(report["re_tau"].as_f64().unwrap().round(), 150.0);
-    assert!(std::fs::read_to_string(&figure).unwrap().contains("<svg"));
+    // Wood and Papavergos & Hedley drawn on 100 tau+ values around the one run.
+    let svg = std::fs::read_to_string(&figure).unwrap();
+    assert_eq!(polylines(&svg, "").iter().filter(|&&n| n == 100).count(), 2, "{:?}", polylines(&svg, ""));
+    assert!(legend_y(&svg, "Wood (1981)") > 500.0);
 }
 
 #[test]
@@ -453,4 +541,34 @@ fn capture_velocity_from_material_properties() {
     let mut bad = common.to_vec();
     bad.extend(["--hamaker", "1e-19", "--restitution", "1.5"]);
     user_error(&bad, "--restitution");
+}
+
+/// With stdout piped and stderr a terminal, a long run shows its progress on stderr from its
+/// start, before the first size is done; with stderr captured (not a terminal) it writes no
+/// escape codes there. `script` (util-linux; Debian's bsdutils) gives the command a terminal.
+#[test]
+fn progress_shows_on_the_terminal_when_stdout_is_piped() {
+    let dir = scratch("progress");
+    let scene = dir.join("quick.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [10e-6]\ncount = 100\n[run]\nduration = 60.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let args = ["room", scene.to_str().unwrap(), "--no-plot", "--format", "csv"];
+    let command = format!("{} {} | wc -c", env!("CARGO_BIN_EXE_depo"), args.join(" "));
+    let out = Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .env("TERM", "xterm")
+        .output()
+        .expect("`script` runs the command on a terminal: install util-linux (Debian: bsdutils)");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    assert!(text.contains("0/1 sizes"), "no progress on the terminal before the first size: {text}");
+    let captured = depo(&args);
+    assert!(
+        captured.status.success() && !captured.stderr.contains(&0x1b),
+        "{}",
+        String::from_utf8_lossy(&captured.stderr)
+    );
 }

@@ -8,11 +8,10 @@ use clap::Args;
 use depo::bench::{error_against_reference, measure, standard_scenarios};
 use depo::tracker::convergence::{integrator_convergence, relaxation_time};
 use depo::tracker::Scheme;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{print_csv_rows, Error, Format};
+use super::{print_csv_rows, progress_bar, Error, Format};
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
@@ -63,8 +62,7 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
     if scenarios.is_empty() {
         return Err(format!("--filter '{}' matches no kernel", args.filter));
     }
-    let progress = ProgressBar::new(scenarios.len() as u64);
-    progress.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}").map_err(|e| e.to_string())?);
+    let progress = progress_bar(scenarios.len(), "kernels")?;
     let mut rows = Vec::new();
     for scenario in scenarios {
         progress.set_message(scenario.label());
@@ -118,15 +116,14 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
         ];
         let series: Vec<Series> = groups
             .iter()
-            .map(|&(name, precision, general)| Series {
-                name: name.to_string(),
-                points: rows
-                    .iter()
-                    .filter(|r| r.kernel.starts_with(precision) && r.kernel.contains("pow") == general)
-                    .map(|r| (r.max_error.max(1e-17), r.fraction_of_ceiling))
-                    .collect(),
-                markers: true,
-                errors: Vec::new(),
+            .map(|&(name, precision, general)| {
+                Series::markers(
+                    name,
+                    rows.iter()
+                        .filter(|r| r.kernel.starts_with(precision) && r.kernel.contains("pow") == general)
+                        .map(|r| (r.max_error.max(1e-17), r.fraction_of_ceiling))
+                        .collect(),
+                )
             })
             .filter(|s| !s.points.is_empty())
             .collect();
@@ -213,15 +210,18 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
     if let Some(path) = &args.plot {
         let series: Vec<Series> = ["exponential", "euler"]
             .iter()
-            .map(|scheme| Series {
-                name: (*scheme).to_string(),
-                points: rows
-                    .iter()
-                    .filter(|r| r.scheme == *scheme)
-                    .filter_map(|r| r.relative_error.map(|e| (r.seconds * 1e3, e)))
-                    .collect(),
-                markers: true,
-                errors: Vec::new(),
+            .map(|scheme| {
+                let runs: Vec<&IntegratorRow> = rows.iter().filter(|r| r.scheme == *scheme).collect();
+                let points: Vec<(f64, f64)> =
+                    runs.iter().filter_map(|r| r.relative_error.map(|e| (r.seconds * 1e3, e))).collect();
+                // An unstable step has no error to draw: say so rather than leave it out unseen.
+                let unstable = runs.len() - points.len();
+                let name = match unstable {
+                    0 => (*scheme).to_string(),
+                    1 => format!("{scheme} (1 unstable step size not shown)"),
+                    n => format!("{scheme} ({n} unstable step sizes not shown)"),
+                };
+                Series::markers(name, points)
             })
             .collect();
         plot::log_log(

@@ -4,13 +4,13 @@
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
+use depo::tracker::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
 use depo::tracker::Geometry;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::room::{Measured, Tally, ERROR_NOTE};
-use super::{print_csv, scene_file, Error, Format};
+use super::room::{log_grid, Measured, Tally, ERROR_NOTE};
+use super::{print_csv, progress_bar, scene_file, Error, Format};
 
 #[derive(ClapArgs, Debug)]
 pub struct ChannelArgs {
@@ -66,8 +66,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
         study.tau_plus.clone_from(list);
     }
     let where_ = args.scene.as_ref().map_or("the built-in channel".to_string(), |p| p.display().to_string());
-    let progress = ProgressBar::new(study.tau_plus.len() as u64);
-    progress.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} tau+ {elapsed}").map_err(|e| e.to_string())?);
+    let progress = progress_bar(study.tau_plus.len(), "tau+")?;
     let start = std::time::Instant::now();
     let points = study.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?;
     progress.finish_and_clear();
@@ -179,30 +178,31 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
         }
     }
     if let Some(path) = &args.plot {
-        let series = |name: &str, pick: &dyn Fn(&Row) -> f64, markers: bool| Series {
-            name: name.to_string(),
-            points: rows.iter().map(|r| (r.tau_plus, pick(r))).filter(|p| p.1 > 0.0).collect(),
-            markers,
-            errors: Vec::new(),
-        };
-        // depo's points with their standard errors; a point with no deposit is left off.
-        let measured = Series {
-            name: "depo (+- 1 standard error)".to_string(),
-            points: rows.iter().filter(|r| r.v_plus.value > 0.0).map(|r| (r.tau_plus, r.v_plus.value)).collect(),
-            markers: true,
-            errors: rows.iter().filter(|r| r.v_plus.value > 0.0).map(|r| r.v_plus.error).collect(),
-        };
-        plot::log_log(
-            path,
-            "Deposition in a turbulent channel",
-            "tau+",
-            "V+",
-            &[
-                measured,
-                series("Wood (1981)", &|r| r.wood, false),
-                series("Papavergos & Hedley (1984)", &|r| r.papavergos_hedley, false),
-            ],
-        )?;
+        // The correlations on 100 tau+ values across the study's, each at the diameter and
+        // Schmidt number the study would give that tau+ (its particles, air and u*).
+        let air = &study.scene.air;
+        let (lo, hi) = study.tau_plus.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &t| (a.min(t), b.max(t)));
+        let model: Vec<(f64, f64)> = log_grid(lo, hi, 100)
+            .into_iter()
+            .filter_map(|tp| diameter_for_tau_plus(tp, study.density, air, u_star).map(|d| (tp, schmidt(d, air))))
+            .collect();
+        // depo's points with their standard errors; with no deposit, the 95 % upper bound.
+        let hit: Vec<&Row> = rows.iter().filter(|r| r.v_plus.upper_bound.is_none()).collect();
+        let bounds: Vec<(f64, f64)> =
+            rows.iter().filter_map(|r| r.v_plus.upper_bound.map(|b| (r.tau_plus, b))).collect();
+        let mut series = vec![
+            Series::markers("depo (+- 1 standard error)", hit.iter().map(|r| (r.tau_plus, r.v_plus.value)).collect())
+                .with_errors(hit.iter().map(|r| r.v_plus.error).collect()),
+            Series::line("Wood (1981)", model.iter().map(|&(tp, sc)| (tp, wood(tp, sc))).collect()),
+            Series::line(
+                "Papavergos & Hedley (1984)",
+                model.iter().map(|&(tp, sc)| (tp, papavergos_hedley(tp, sc))).collect(),
+            ),
+        ];
+        if !bounds.is_empty() {
+            series.push(Series::upper_bounds("depo: no deposit, 95 % upper bound", bounds).color(0));
+        }
+        plot::log_log(path, "Deposition in a turbulent channel", "tau+", "V+", &series)?;
         eprintln!("figure: {}", path.display());
     }
     Ok(())

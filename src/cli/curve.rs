@@ -140,18 +140,8 @@ pub fn run(args: &CurveArgs) -> Result<(), Error> {
 fn write_plot(args: &CurveArgs, points: &[Point]) -> Result<(), Error> {
     let Some(path) = &args.plot else { return Ok(()) };
     let series = [
-        Series {
-            name: "e = R (1 - rho)".into(),
-            points: points.iter().map(|p| (p.vn, p.e)).collect(),
-            markers: false,
-            errors: Vec::new(),
-        },
-        Series {
-            name: "R".into(),
-            points: points.iter().map(|p| (p.vn, p.r)).collect(),
-            markers: false,
-            errors: Vec::new(),
-        },
+        Series::line("e = R (1 - rho)", points.iter().map(|p| (p.vn, p.e)).collect()),
+        Series::line("R", points.iter().map(|p| (p.vn, p.r)).collect()),
     ];
     plot::lines(path, "Restitution against normal impact speed", "|vn| (m/s)", "coefficient", &series, true)?;
     eprintln!("wrote {}", path.display());

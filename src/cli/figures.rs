@@ -41,19 +41,12 @@ pub fn run(args: &FiguresArgs) -> Result<(), Error> {
     for degrees in [0.0f64, 2.0] {
         let phi = degrees.to_radians();
         let fitted = tilt_refit(&law, phi, &log_space(0.32, 3.2, 40).collect::<Vec<_>>()).map_err(|e| e.to_string())?;
-        series.push(Series {
-            name: format!("e, tilt {degrees} deg (refit vc = {:.4} m/s)", fitted.params.vc),
-            points: speeds.iter().map(|&s| (s, apparent_restitution(&law, s, phi))).collect(),
-            markers: false,
-            errors: Vec::new(),
-        });
+        series.push(Series::line(
+            format!("e, tilt {degrees} deg (refit vc = {:.4} m/s)", fitted.params.vc),
+            speeds.iter().map(|&s| (s, apparent_restitution(&law, s, phi))).collect(),
+        ));
     }
-    series.push(Series {
-        name: "R".into(),
-        points: speeds.iter().map(|&s| (s, law.restitution(s))).collect(),
-        markers: false,
-        errors: Vec::new(),
-    });
+    series.push(Series::line("R", speeds.iter().map(|&s| (s, law.restitution(s))).collect()));
     let path = args.out.join("fig6-tilt.svg");
     plot::lines(&path, "Tilt sensitivity, Ag-coated glass on copper (Fig. 6)", "|vn| (m/s)", "e", &series, true)?;
     out!("wrote {}", path.display());
@@ -68,36 +61,31 @@ pub fn run(args: &FiguresArgs) -> Result<(), Error> {
     let at_70 = rows[1].1.params.vc;
     let slope = |b: f64| diameters.iter().map(|&d| (d * 1e6, at_70 * (d / 70e-6).powf(b))).collect::<Vec<_>>();
     let series = [
-        Series {
-            name: "Table 1 simulation rows".into(),
-            points: rows.iter().map(|(d, p)| (d * 1e6, p.params.vc)).collect(),
-            markers: true,
-            errors: Vec::new(),
-        },
-        Series {
-            name: format!("fit: vc ~ d^{:.2}", scaling.vc.exponent),
-            points: diameters.iter().map(|&d| (d * 1e6, scaling.vc.at(d))).collect(),
-            markers: false,
-            errors: Vec::new(),
-        },
-        Series { name: "slope -5/6 (JKR)".into(), points: slope(-5.0 / 6.0), markers: false, errors: Vec::new() },
-        Series { name: "slope -5/2".into(), points: slope(-2.5), markers: false, errors: Vec::new() },
+        Series::markers("Table 1 simulation rows", rows.iter().map(|(d, p)| (d * 1e6, p.params.vc)).collect()),
+        Series::line(
+            format!("fit: vc ~ d^{:.2}", scaling.vc.exponent),
+            diameters.iter().map(|&d| (d * 1e6, scaling.vc.at(d))).collect(),
+        ),
+        Series::line("slope -5/6 (JKR)", slope(-5.0 / 6.0)),
+        Series::line("slope -5/2", slope(-2.5)),
     ];
     let path = args.out.join("fig8-size.svg");
     plot::log_log(&path, "Capture velocity against diameter (Fig. 8)", "diameter (um)", "vc (m/s)", &series)?;
     out!("wrote {}", path.display());
 
-    // e(vn) of every preset that captures.
-    let series: Vec<Series> = PRESETS
+    // e(vn) of every preset that captures, each in its own colour; a preset with the same
+    // constants as one drawn before it (sim-70um is li1997-sio2's row) would hide under it,
+    // so it is dashed and its legend entry names the other.
+    let capturing: Vec<&presets::Preset> = PRESETS.iter().filter(|p| p.params.vc > 0.0).collect();
+    let series: Vec<Series> = capturing
         .iter()
-        .filter(|p| p.params.vc > 0.0)
-        .map(|p| {
+        .enumerate()
+        .map(|(i, p)| {
             let law = WallLaw::new(p.params).expect("presets are valid");
-            Series {
-                name: p.id.to_string(),
-                points: log_space(0.01, 20.0, 200).map(|v| (v, law.overall_restitution(v))).collect(),
-                markers: false,
-                errors: Vec::new(),
+            let points = log_space(0.01, 20.0, 200).map(|v| (v, law.overall_restitution(v))).collect();
+            match capturing[..i].iter().find(|q| q.params == p.params) {
+                Some(twin) => Series::line(format!("{} (same constants as {})", p.id, twin.id), points).dashed(),
+                None => Series::line(p.id, points),
             }
         })
         .collect();

@@ -161,10 +161,7 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
             (0..200).map(|i| lo * (hi / lo).powf(i as f64 / 199.0)).map(|v| (v, law.overall_restitution(v))).collect();
         let mut data: Vec<(f64, f64)> = samples.iter().map(|s| (s.speed, s.restitution)).collect();
         data.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let series = [
-            Series { name: "data".into(), points: data, markers: true, errors: Vec::new() },
-            Series { name: "fit: e = R (1 - rho)".into(), points: curve, markers: false, errors: Vec::new() },
-        ];
+        let series = [Series::markers("data", data), Series::line("fit: e = R (1 - rho)", curve)];
         plot::lines(path, "Fit of Eq. (10)", "|vn| (m/s)", "e", &series, true)?;
         eprintln!("wrote {}", path.display());
     }

@@ -167,6 +167,23 @@ fn emit_csv(write: impl FnOnce(&mut csv::Writer<Vec<u8>>) -> csv::Result<()>) ->
     Ok(())
 }
 
+/// A progress bar for a long run: `[bar] done/len WHAT elapsed message`, on stderr.
+///
+/// It shows whenever stderr is a terminal, whatever stdout is: a table or JSON piped into a
+/// file or another program still shows its progress on the terminal. It is drawn at once and
+/// redrawn every second, so a first step of a minute shows its elapsed time rather than
+/// nothing. With stderr not a terminal (a log file) or `TERM=dumb` it stays hidden, so
+/// captured output holds no escape codes.
+pub fn progress_bar(len: usize, what: &str) -> Result<indicatif::ProgressBar, Error> {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::stderr());
+    let template = format!("{{bar:30}} {{pos}}/{{len}} {what} {{elapsed}} {{msg}}");
+    bar.set_style(ProgressStyle::with_template(&template).map_err(|e| e.to_string())?);
+    bar.tick();
+    bar.enable_steady_tick(std::time::Duration::from_secs(1));
+    Ok(bar)
+}
+
 /// Runs the parsed command.
 pub fn run(args: Args) -> Result<(), Error> {
     match args.command {

@@ -1,20 +1,87 @@
 //! SVG line charts for the subcommands' `--plot` option.
+//!
+//! Every series has its own colour (ten distinct ones before they repeat) unless the caller
+//! pairs series on purpose (a measurement and its model in one colour). The legend sits in a
+//! band below the plotting area, so it never covers data. A point a logarithmic axis cannot
+//! show (a value `<= 0`) is left off and counted in its series' legend entry, never dropped
+//! in silence.
 
 use std::path::Path;
 
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::Error;
 
-/// One named series of `(x, y)` points, drawn as a line or as markers, with a standard error
-/// bar per point when `errors` is not empty (drawn as +- one standard error, clipped to the
-/// positive part on a log axis).
+/// How a series is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Style {
+    /// A solid line through the points.
+    Line,
+    /// A dashed line through the points (a curve that would otherwise hide under another).
+    Dashed,
+    /// A filled circle per point.
+    Markers,
+    /// A downward triangle per point: the value is at most this (a 95 % upper bound).
+    UpperBounds,
+}
+
+/// One named series of `(x, y)` points, with a standard error bar per point when `errors` is
+/// not empty (drawn as +- one standard error, clipped to the positive part on a log axis).
 pub struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
-    pub markers: bool,
+    pub style: Style,
     pub errors: Vec<f64>,
+    /// Index into the palette; by default the series' position on the chart.
+    pub color: Option<usize>,
 }
+
+impl Series {
+    /// A solid line.
+    pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { name: name.into(), points, style: Style::Line, errors: Vec::new(), color: None }
+    }
+
+    /// A marker per point.
+    pub fn markers(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { style: Style::Markers, ..Self::line(name, points) }
+    }
+
+    /// Upper bounds, one triangle per point.
+    pub fn upper_bounds(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { style: Style::UpperBounds, ..Self::line(name, points) }
+    }
+
+    /// With one standard error per point.
+    pub fn with_errors(self, errors: Vec<f64>) -> Self {
+        Self { errors, ..self }
+    }
+
+    /// Drawn dashed.
+    pub fn dashed(self) -> Self {
+        Self { style: Style::Dashed, ..self }
+    }
+
+    /// In the palette's colour `index`.
+    pub fn color(self, index: usize) -> Self {
+        Self { color: Some(index), ..self }
+    }
+}
+
+/// Ten colours told apart on white (the "tab10" palette).
+const PALETTE: [RGBColor; 10] = [
+    RGBColor(0x1f, 0x77, 0xb4),
+    RGBColor(0xd6, 0x27, 0x28),
+    RGBColor(0x2c, 0xa0, 0x2c),
+    RGBColor(0xff, 0x7f, 0x0e),
+    RGBColor(0x94, 0x67, 0xbd),
+    RGBColor(0x8c, 0x56, 0x4b),
+    RGBColor(0xe3, 0x77, 0xc2),
+    RGBColor(0x7f, 0x7f, 0x7f),
+    RGBColor(0xbc, 0xbd, 0x22),
+    RGBColor(0x17, 0xbe, 0xcf),
+];
 
 /// Draws `series` on one chart, logarithmic in x when `log_x`, into the SVG file `path`.
 pub fn lines(
@@ -33,6 +100,71 @@ pub fn log_log(path: &Path, title: &str, x_label: &str, y_label: &str, series: &
     chart(path, title, (x_label, y_label), series, (true, true))
 }
 
+/// A series as drawn: the points the axes can show, and the legend entry that says what was
+/// left off.
+struct Drawn {
+    label: String,
+    points: Vec<(f64, f64)>,
+    errors: Vec<f64>,
+    style: Style,
+    color: RGBColor,
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+/// Splits each series into what the axes show and a legend entry naming what they cannot.
+fn prepare(series: &[Series], (log_x, log_y): (bool, bool)) -> Vec<Drawn> {
+    series
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let (mut points, mut errors) = (Vec::new(), Vec::new());
+            let (mut non_positive, mut non_finite) = (0, 0);
+            for (k, &(x, y)) in s.points.iter().enumerate() {
+                if !(x.is_finite() && y.is_finite()) {
+                    non_finite += 1;
+                } else if (log_x && x <= 0.0) || (log_y && y <= 0.0) {
+                    non_positive += 1;
+                } else {
+                    points.push((x, y));
+                    if let Some(&e) = s.errors.get(k) {
+                        errors.push(e);
+                    }
+                }
+            }
+            let mut notes = Vec::new();
+            if non_positive > 0 {
+                notes.push(format!("{non_positive} point{} <= 0 not shown", plural(non_positive)));
+            }
+            if non_finite > 0 {
+                notes.push(format!("{non_finite} non-finite point{} not shown", plural(non_finite)));
+            }
+            let label = if notes.is_empty() { s.name.clone() } else { format!("{} ({})", s.name, notes.join(", ")) };
+            Drawn { label, points, errors, style: s.style, color: PALETTE[s.color.unwrap_or(i) % PALETTE.len()] }
+        })
+        .collect()
+}
+
+/// The lower end of an error bar: on a log axis clipped to a hundredth of the value.
+fn low(y: f64, e: f64, log_y: bool) -> f64 {
+    if log_y {
+        (y - e).max(y / 100.0)
+    } else {
+        y - e
+    }
+}
+
+/// Height of the plot itself, and of one legend row, in pixels.
+const PLOT_HEIGHT: u32 = 500;
+const LEGEND_ROW: u32 = 20;
+const WIDTH: u32 = 800;
+
 fn chart(
     path: &Path,
     title: &str,
@@ -41,8 +173,12 @@ fn chart(
     (log_x, log_y): (bool, bool),
 ) -> Result<(), Error> {
     let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
-    let xs = series.iter().flat_map(|s| s.points.iter().map(|p| p.0));
-    let ys = series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
+    let drawn = prepare(series, (log_x, log_y));
+    let xs = drawn.iter().flat_map(|s| s.points.iter().map(|p| p.0));
+    let ys = drawn.iter().flat_map(|s| {
+        let bars = s.points.iter().zip(&s.errors).flat_map(|(&(_, y), &e)| [low(y, e, log_y), y + e]);
+        s.points.iter().map(|p| p.1).chain(bars)
+    });
     let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
     let (y0, y1) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| (a.min(y), b.max(y)));
     if !(x0.is_finite() && x1.is_finite()) {
@@ -56,13 +192,22 @@ fn chart(
     };
     let (y0, y1) = match (log_y, y0 < y1) {
         (true, true) => (y0 / 1.5, y1 * 1.5),
+        (true, false) => (y0 / 2.0, y1 * 2.0),
         (false, true) => (y0.min(0.0), y1 * 1.05),
-        (_, false) => (0.0, 1.0),
+        (false, false) => (0.0, 1.0),
     };
-    let root = SVGBackend::new(path, (800, 500)).into_drawing_area();
+    // The legend: every series, also one with no point to show (its entry says why), in two
+    // columns when the labels fit, filled column by column.
+    let entries: Vec<&Drawn> = drawn.iter().collect();
+    let longest = entries.iter().map(|d| d.label.chars().count()).max().unwrap_or(0);
+    let columns = if longest <= 48 { 2 } else { 1 };
+    let rows = entries.len().div_ceil(columns) as u32;
+    let legend_height = if rows == 0 { 0 } else { rows * LEGEND_ROW + 15 };
+
+    let root = SVGBackend::new(path, (WIDTH, PLOT_HEIGHT + legend_height)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
-    let colors = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
-    let mut builder = ChartBuilder::on(&root);
+    let (upper, lower) = root.split_vertically(PLOT_HEIGHT);
+    let mut builder = ChartBuilder::on(&upper);
     builder.caption(title, ("sans-serif", 20)).margin(15).x_label_area_size(45).y_label_area_size(60);
     macro_rules! draw {
         ($chart:expr) => {{
@@ -75,36 +220,40 @@ fn chart(
                 .y_label_formatter(&|v| tick(*v))
                 .draw()
                 .map_err(|e| fail(&e))?;
-            for (i, s) in series.iter().enumerate() {
-                let color = colors[i % colors.len()];
+            for s in &drawn {
+                let color = s.color;
                 if !s.errors.is_empty() {
-                    let low = |y: f64, e: f64| if log_y { (y - e).max(y / 100.0) } else { y - e };
                     chart
                         .draw_series(s.points.iter().zip(&s.errors).map(|(&(x, y), &e)| {
-                            ErrorBar::new_vertical(x, low(y, e), y, y + e, color.stroke_width(1), 8)
+                            ErrorBar::new_vertical(x, low(y, e, log_y), y, y + e, color.stroke_width(1), 8)
                         }))
                         .map_err(|e| fail(&e))?;
                 }
-                if s.markers {
-                    chart
-                        .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                        .map_err(|e| fail(&e))?
-                        .label(s.name.as_str())
-                        .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
-                } else {
-                    chart
-                        .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
-                        .map_err(|e| fail(&e))?
-                        .label(s.name.as_str())
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                match s.style {
+                    Style::Markers => {
+                        chart
+                            .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                            .map_err(|e| fail(&e))?;
+                    }
+                    Style::UpperBounds => {
+                        chart
+                            .draw_series(s.points.iter().map(|&p| {
+                                EmptyElement::at(p) + Polygon::new(vec![(-5, -4), (5, -4), (0, 5)], color.filled())
+                            }))
+                            .map_err(|e| fail(&e))?;
+                    }
+                    Style::Line => {
+                        chart
+                            .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
+                            .map_err(|e| fail(&e))?;
+                    }
+                    Style::Dashed => {
+                        chart
+                            .draw_series(DashedLineSeries::new(s.points.iter().copied(), 8, 5, color.stroke_width(2)))
+                            .map_err(|e| fail(&e))?;
+                    }
                 }
             }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .draw()
-                .map_err(|e| fail(&e))?;
         }};
     }
     match (log_x, log_y) {
@@ -113,8 +262,45 @@ fn chart(
         (false, true) => draw!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())),
         (false, false) => draw!(builder.build_cartesian_2d(x0..x1, y0..y1)),
     }
+    let column_width = (WIDTH as i32 - 75) / columns as i32;
+    let font = TextStyle::from(("sans-serif", 14).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    for (k, entry) in entries.iter().enumerate() {
+        let (row, column) = (k as u32 % rows.max(1), k as u32 / rows.max(1));
+        let x = 75 + column as i32 * column_width;
+        let y = (row * LEGEND_ROW + LEGEND_ROW / 2 + 5) as i32;
+        legend_symbol(&lower, entry, (x, y)).map_err(|e| fail(&e))?;
+        lower.draw(&Text::new(entry.label.as_str(), (x + 40, y), font.clone())).map_err(|e| fail(&e))?;
+    }
     root.present().map_err(|e| fail(&e))?;
     Ok(())
+}
+
+/// A series' symbol in the legend, 30 pixels wide from `(x, y)`.
+fn legend_symbol<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entry: &Drawn,
+    (x, y): (i32, i32),
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let color = entry.color;
+    if !entry.errors.is_empty() {
+        area.draw(&PathElement::new(vec![(x + 15, y - 7), (x + 15, y + 7)], color.stroke_width(1)))?;
+        for end in [y - 7, y + 7] {
+            area.draw(&PathElement::new(vec![(x + 11, end), (x + 19, end)], color.stroke_width(1)))?;
+        }
+    }
+    match entry.style {
+        Style::Markers => area.draw(&Circle::new((x + 15, y), 4, color.filled())),
+        Style::UpperBounds => {
+            area.draw(&Polygon::new(vec![(x + 10, y - 4), (x + 20, y - 4), (x + 15, y + 5)], color.filled()))
+        }
+        Style::Line => area.draw(&PathElement::new(vec![(x, y), (x + 30, y)], color.stroke_width(2))),
+        Style::Dashed => {
+            for (a, b) in [(0, 8), (13, 21), (26, 30)] {
+                area.draw(&PathElement::new(vec![(x + a, y), (x + b, y)], color.stroke_width(2)))?;
+            }
+            Ok(())
+        }
+    }
 }
 
 /// A tick label: plain for moderate values, otherwise in e-notation with the rounding noise of
@@ -128,5 +314,58 @@ fn tick(v: f64) -> String {
         let s = format!("{v:.2e}");
         let (mantissa, exponent) = s.split_once('e').expect("e-notation");
         format!("{}e{exponent}", mantissa.trim_end_matches('0').trim_end_matches('.'))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> std::path::PathBuf {
+        std::env::temp_dir().join(format!("depo-plot-{}-{name}.svg", std::process::id()))
+    }
+
+    /// The texts of an SVG file with their `y` positions.
+    fn texts(svg: &str) -> Vec<(String, f64)> {
+        svg.split("<text")
+            .skip(1)
+            .map(|chunk| {
+                let y = chunk.split("y=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+                let body = chunk.split_once('>').unwrap().1.split("</text>").next().unwrap();
+                (body.trim().replace("&lt;", "<"), y)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn points_a_log_axis_cannot_show_are_counted_in_the_legend() {
+        let path = scratch("zeros");
+        let series = [
+            Series::markers("measured", vec![(1.0, 0.0), (2.0, 1e-3), (3.0, -1.0), (4.0, 2e-3)])
+                .with_errors(vec![0.0, 1e-4, 0.0, 2e-4]),
+            Series::line("model", vec![(1.0, 1e-3), (4.0, 2e-3)]),
+        ];
+        log_log(&path, "t", "x", "y", &series).unwrap();
+        let labels: Vec<String> = texts(&std::fs::read_to_string(&path).unwrap()).into_iter().map(|t| t.0).collect();
+        assert!(labels.contains(&"measured (2 points <= 0 not shown)".to_string()), "{labels:?}");
+        assert!(labels.contains(&"model".to_string()), "a series with nothing left off keeps its name");
+        // On a linear axis the same zeros are drawn and nothing is said.
+        lines(&path, "t", "x", "y", &series, false).unwrap();
+        assert!(!std::fs::read_to_string(&path).unwrap().contains("not shown"));
+        std::fs::remove_file(path).ok();
+    }
+
+    #[test]
+    fn the_legend_sits_below_the_plot() {
+        let path = scratch("legend");
+        let series: Vec<Series> =
+            (0..12).map(|i| Series::line(format!("s{i}"), vec![(1.0, f64::from(i)), (2.0, 1.0)])).collect();
+        lines(&path, "t", "x", "y", &series, false).unwrap();
+        let texts = texts(&std::fs::read_to_string(&path).unwrap());
+        for i in 0..12 {
+            let (_, y) = texts.iter().find(|t| t.0 == format!("s{i}")).expect("legend entry");
+            assert!(*y > f64::from(PLOT_HEIGHT), "legend entry s{i} at y = {y}");
+        }
+        std::fs::remove_file(path).ok();
     }
 }

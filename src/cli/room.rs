@@ -4,14 +4,14 @@
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
+use depo::tracker::correlations::LaiNazaroff;
 use depo::tracker::studies::MAP_BINS;
 use depo::tracker::studies::{RoomPoint, RoomStudy};
 use depo::tracker::{Estimate, Flow, Geometry, WallTally};
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{print_csv, scene_file, Error, Format};
+use super::{print_csv, progress_bar, scene_file, Error, Format};
 
 #[derive(ClapArgs, Debug)]
 pub struct RoomArgs {
@@ -63,6 +63,19 @@ impl Measured {
             upper_bound: self.upper_bound.map(|b| b * k),
         }
     }
+}
+
+/// A surface's figure is resolved when its relative standard error is at most this...
+const RESOLVED_ERROR: f64 = 0.05;
+/// ...where Lai & Nazaroff give at least this deposition velocity (m/s); below it the
+/// relative error is not asked of a figure (a few events over a whole run).
+const RESOLVABLE: f64 = 1e-7;
+
+/// Whether a surface's deposition velocity `measured` is unresolved beside the model's `model`
+/// (m/s): no deposit event, or a relative standard error above [`RESOLVED_ERROR`] where the
+/// model gives at least [`RESOLVABLE`].
+fn unresolved(measured: &Measured, model: f64) -> bool {
+    measured.events == 0 || (model >= RESOLVABLE && measured.error > RESOLVED_ERROR * measured.value)
 }
 
 /// The note under a study's table: what its numbers mean.
@@ -128,6 +141,9 @@ struct Row {
     excursions_truncated: Option<f64>,
     wall_tally: Tally,
     deposited: Deposited,
+    /// The surfaces (floor, ceiling, walls) whose figure is unresolved: no deposit event, or
+    /// a relative standard error above 5 % where Lai & Nazaroff give at least 1e-7 m/s.
+    unresolved: Vec<&'static str>,
     #[serde(skip)]
     maps: Vec<Vec<u32>>,
 }
@@ -160,11 +176,18 @@ struct Report<'a> {
 
 fn row(p: &RoomPoint) -> Row {
     let per_hour = |e: Estimate| Measured::from(e).scaled(3600.0);
+    let (floor, ceiling, walls) = (Measured::from(p.floor), Measured::from(p.ceiling), Measured::from(p.walls));
+    let unresolved =
+        [("floor", &floor, p.model.floor), ("ceiling", &ceiling, p.model.ceiling), ("walls", &walls, p.model.wall)]
+            .into_iter()
+            .filter(|(_, m, model)| unresolved(m, *model))
+            .map(|(name, ..)| name)
+            .collect();
     Row {
         diameter_um: p.diameter * 1e6,
-        floor: p.floor.into(),
-        ceiling: p.ceiling.into(),
-        walls: p.walls.into(),
+        floor,
+        ceiling,
+        walls,
         beta_per_hour: per_hour(p.beta),
         indoor_outdoor: p.indoor_outdoor.map(Measured::from),
         lai_nazaroff: Model {
@@ -186,6 +209,7 @@ fn row(p: &RoomPoint) -> Row {
             walls: p.deposited[2].0,
             walls_kg: p.deposited[2].1,
         },
+        unresolved,
         maps: p.maps.clone(),
     }
 }
@@ -193,9 +217,7 @@ fn row(p: &RoomPoint) -> Row {
 pub fn run(args: &RoomArgs) -> Result<(), Error> {
     let study: RoomStudy = scene_file::room(args.scene.as_deref())?;
     let where_ = args.scene.as_ref().map_or("the built-in room".to_string(), |p| p.display().to_string());
-    let progress = ProgressBar::new(study.diameters.len() as u64);
-    progress
-        .set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} sizes {elapsed}").map_err(|e| e.to_string())?);
+    let progress = progress_bar(study.diameters.len(), "sizes")?;
     let start = std::time::Instant::now();
     let points = study.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?;
     progress.finish_and_clear();
@@ -228,12 +250,15 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "diameter_um",
                 "floor",
                 "floor_error",
+                "floor_deposits",
                 "floor_lai_nazaroff",
                 "ceiling",
                 "ceiling_error",
+                "ceiling_deposits",
                 "ceiling_lai_nazaroff",
                 "walls",
                 "walls_error",
+                "walls_deposits",
                 "walls_lai_nazaroff",
                 "beta_per_hour",
                 "beta_error",
@@ -247,24 +272,28 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 &header[..columns],
                 rows.iter().map(|r| {
                     let io = r.indoor_outdoor.as_ref().map_or([f64::NAN; 2], |m| [m.value, m.error]);
+                    let n = |m: &Measured| m.events.to_string();
+                    let x = |v: f64| v.to_string();
                     let row = [
-                        r.diameter_um,
-                        r.floor.value,
-                        r.floor.error,
-                        r.lai_nazaroff.floor,
-                        r.ceiling.value,
-                        r.ceiling.error,
-                        r.lai_nazaroff.ceiling,
-                        r.walls.value,
-                        r.walls.error,
-                        r.lai_nazaroff.walls,
-                        r.beta_per_hour.value,
-                        r.beta_per_hour.error,
-                        r.lai_nazaroff.beta_per_hour,
-                        io[0],
-                        io[1],
-                    ]
-                    .map(|x| x.to_string());
+                        x(r.diameter_um),
+                        x(r.floor.value),
+                        x(r.floor.error),
+                        n(&r.floor),
+                        x(r.lai_nazaroff.floor),
+                        x(r.ceiling.value),
+                        x(r.ceiling.error),
+                        n(&r.ceiling),
+                        x(r.lai_nazaroff.ceiling),
+                        x(r.walls.value),
+                        x(r.walls.error),
+                        n(&r.walls),
+                        x(r.lai_nazaroff.walls),
+                        x(r.beta_per_hour.value),
+                        x(r.beta_per_hour.error),
+                        x(r.lai_nazaroff.beta_per_hour),
+                        x(io[0]),
+                        x(io[1]),
+                    ];
                     row[..columns].to_vec()
                 }),
             )?;
@@ -297,7 +326,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 );
             }
             out!(
-                "{:>8}  {:>26} {:>9}  {:>26} {:>9}  {:>26} {:>9}  {:>20} {:>7} {:>6}{}  method",
+                "{:>8}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7} {:>6}{}  method",
                 "d (um)",
                 "floor",
                 "L&N",
@@ -310,7 +339,10 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "ratio",
                 if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
             );
-            let cell = Measured::cell;
+            // A surface's figure, flagged with `*` when unresolved.
+            let cell = |r: &Row, name: &str, m: &Measured| {
+                format!("{}{}", m.cell(), if r.unresolved.contains(&name) { "*" } else { " " })
+            };
             for r in &rows {
                 let method = match r.excursions_truncated {
                     Some(t) if t > 1e-3 => format!("excursions ({:.1} %)", 100.0 * t),
@@ -318,13 +350,13 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     None => "plain".to_string(),
                 };
                 out!(
-                    "{:>8.3}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>26} {:>9.2e}  {:>20} {:>7.3} {:>6.2}{}  {method}",
+                    "{:>8.3}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>20} {:>7.3} {:>6.2}{}  {method}",
                     r.diameter_um,
-                    cell(&r.floor),
+                    cell(r, "floor", &r.floor),
                     r.lai_nazaroff.floor,
-                    cell(&r.ceiling),
+                    cell(r, "ceiling", &r.ceiling),
                     r.lai_nazaroff.ceiling,
-                    cell(&r.walls),
+                    cell(r, "walls", &r.walls),
                     r.lai_nazaroff.walls,
                     if r.beta_per_hour.value >= 0.1 {
                         format!("{:.3} +- {:.3}", r.beta_per_hour.value, r.beta_per_hour.error)
@@ -339,6 +371,13 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 );
             }
             out!("{ERROR_NOTE}");
+            if rows.iter().any(|r| !r.unresolved.is_empty()) {
+                out!(
+                    "* unresolved: no deposit event, or a relative standard error above {} % where Lai & Nazaroff give at least {:.0e} m/s.",
+                    100.0 * RESOLVED_ERROR,
+                    RESOLVABLE
+                );
+            }
             out!(
                 "Averages from {} s to {} s; {steps} particle-steps tracked (excursions not counted) in {seconds:.1} s.",
                 study.transient * study.scene.duration,
@@ -348,75 +387,129 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
     }
     if !args.no_plot {
         std::fs::create_dir_all(&args.plot).map_err(|e| format!("cannot create {}: {e}", args.plot.display()))?;
-        let series = |name: &str, pick: &dyn Fn(&Row) -> f64, markers: bool| Series {
-            name: name.to_string(),
-            // Below 1e-10 m/s (the model's ceiling for coarse particles reaches 1e-138) is
-            // nothing a room shows; such points are left off the log axis.
-            points: rows.iter().map(|r| (r.diameter_um, pick(r))).filter(|p| p.1 > 1e-10).collect(),
-            markers,
-            errors: Vec::new(),
-        };
-        // depo's values with their standard errors; a surface without a deposit is left off.
-        let measured = |name: &str, pick: &dyn Fn(&Row) -> &Measured| {
-            let kept: Vec<&Row> = rows.iter().filter(|r| pick(r).value > 0.0).collect();
-            Series {
-                name: format!("{name} (depo, +- 1 s.e.)"),
-                points: kept.iter().map(|r| (r.diameter_um, pick(r).value)).collect(),
-                markers: true,
-                errors: kept.iter().map(|r| pick(r).error).collect(),
-            }
-        };
-        let deposition = args.plot.join("room-deposition.svg");
-        plot::log_log(
-            &deposition,
-            "Deposition velocity in a room",
-            "particle diameter (um)",
-            "deposition velocity (m/s)",
-            &[
-                measured("floor", &|r| &r.floor),
-                measured("ceiling", &|r| &r.ceiling),
-                measured("walls", &|r| &r.walls),
-                series("floor (Lai & Nazaroff)", &|r| r.lai_nazaroff.floor, false),
-                series("ceiling (Lai & Nazaroff)", &|r| r.lai_nazaroff.ceiling, false),
-                series("walls (Lai & Nazaroff)", &|r| r.lai_nazaroff.walls, false),
-            ],
-        )?;
-        let beta = args.plot.join("room-beta.svg");
-        plot::log_log(
-            &beta,
-            "Loss-rate coefficient",
-            "particle diameter (um)",
-            "beta (1/h)",
-            &[
-                measured("beta", &|r| &r.beta_per_hour),
-                series("Lai & Nazaroff (2000)", &|r| r.lai_nazaroff.beta_per_hour, false),
-            ],
-        )?;
-        // Deposition maps, one CSV per wall and size: rows and columns along the wall's two
-        // in-plane axes in the order x, y, z.
-        let walls = study.scene.geometry.walls();
-        for r in &rows {
-            let label = (r.diameter_um * 1e4).round() / 1e4;
-            for (wall, map) in walls.iter().zip(&r.maps) {
-                let name = wall.name(&study.scene.geometry);
-                let path = args.plot.join(format!("room-map-{name}-{label}um.csv"));
-                let mut text = String::new();
-                for row in map.chunks(MAP_BINS[1]) {
-                    let cells: Vec<String> = row.iter().map(u32::to_string).collect();
-                    text.push_str(&cells.join(","));
-                    text.push('\n');
-                }
-                std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            }
-        }
-        eprintln!(
-            "figures: {} and {}; deposition maps ({}x{} cells per wall): {}/room-map-WALL-SIZEum.csv",
-            deposition.display(),
-            beta.display(),
-            MAP_BINS[0],
-            MAP_BINS[1],
-            args.plot.display()
-        );
+        plot_room(&args.plot, &study, &rows)?;
     }
+    Ok(())
+}
+
+/// Below this deposition velocity (m/s) a model curve is not drawn: Lai & Nazaroff's ceiling
+/// for coarse particles reaches 1e-138 m/s, nothing a room shows. The legend says where.
+const MODEL_FLOOR: f64 = 1e-10;
+
+/// `n` log-spaced points from `from` to `to`; around `from` when the two are equal.
+pub fn log_grid(from: f64, to: f64, n: usize) -> Vec<f64> {
+    let (from, to) = if from < to { (from, to) } else { (from / 2.0, to * 2.0) };
+    (0..n).map(|i| from * (to / from).powf(i as f64 / (n - 1) as f64)).collect()
+}
+
+/// The room's figures and deposition maps into `dir`.
+fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(), Error> {
+    // Lai & Nazaroff on 100 sizes across the study's, from the same model and inputs the
+    // study compares with (its air, gravity and friction velocity).
+    let u_star = study.scene.flow.friction_velocity().unwrap_or(0.0);
+    let g = study.scene.gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
+    let size = study.scene.geometry.size();
+    let (lo, hi) = study.diameters.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &d| (a.min(d), b.max(d)));
+    let model: Vec<(f64, LaiNazaroff)> = log_grid(lo, hi, 100)
+        .into_iter()
+        .map(|d| (d * 1e6, LaiNazaroff::new(d, study.density, &study.scene.air, g, u_star)))
+        .collect();
+    let curve = |name: &str, pick: &dyn Fn(&LaiNazaroff) -> f64, color: usize| {
+        let points: Vec<(f64, f64)> = model.iter().map(|(d, m)| (*d, pick(m))).filter(|p| p.1 > MODEL_FLOOR).collect();
+        let name = if points.len() < model.len() {
+            format!("{name} (Lai & Nazaroff; below {MODEL_FLOOR:.0e} m/s not shown)")
+        } else {
+            format!("{name} (Lai & Nazaroff)")
+        };
+        Series::line(name, points).color(color)
+    };
+    // depo's values with their standard errors, and where a surface had no deposit its 95 %
+    // upper bound.
+    let measured = |name: &str, pick: &dyn Fn(&Row) -> &Measured, color: usize| {
+        let hit: Vec<&Row> = rows.iter().filter(|r| pick(r).upper_bound.is_none()).collect();
+        let bounds: Vec<(f64, f64)> =
+            rows.iter().filter_map(|r| pick(r).upper_bound.map(|b| (r.diameter_um, b))).collect();
+        let mut series = vec![Series::markers(
+            format!("{name} (depo, +- 1 s.e.)"),
+            hit.iter().map(|r| (r.diameter_um, pick(r).value)).collect(),
+        )
+        .with_errors(hit.iter().map(|r| pick(r).error).collect())
+        .color(color)];
+        if !bounds.is_empty() {
+            series.push(Series::upper_bounds(format!("{name}: no deposit, 95 % upper bound"), bounds).color(color));
+        }
+        series
+    };
+    let deposition = dir.join("room-deposition.svg");
+    let mut series = Vec::new();
+    series.extend(measured("floor", &|r| &r.floor, 0));
+    series.extend(measured("ceiling", &|r| &r.ceiling, 1));
+    series.extend(measured("walls", &|r| &r.walls, 2));
+    series.push(curve("floor", &|m| m.floor, 0));
+    series.push(curve("ceiling", &|m| m.ceiling, 1));
+    series.push(curve("walls", &|m| m.wall, 2));
+    plot::log_log(
+        &deposition,
+        "Deposition velocity in a room",
+        "particle diameter (um)",
+        "deposition velocity (m/s)",
+        &series,
+    )?;
+    let beta = dir.join("room-beta.svg");
+    let mut series = measured("beta", &|r| &r.beta_per_hour, 0);
+    series.push(
+        Series::line("Lai & Nazaroff (2000)", model.iter().map(|(d, m)| (*d, m.loss_rate(size) * 3600.0)).collect())
+            .color(1),
+    );
+    plot::log_log(&beta, "Loss-rate coefficient", "particle diameter (um)", "beta (1/h)", &series)?;
+    // Deposition maps, one CSV per wall and size, under a header of `#` lines: rows and
+    // columns along the wall's two in-plane axes in the order x, y, z.
+    let walls = study.scene.geometry.walls();
+    let axis = ["x", "y", "z"];
+    for r in rows {
+        let label = (r.diameter_um * 1e4).round() / 1e4;
+        for (wall, map) in walls.iter().zip(&r.maps) {
+            let name = wall.name(&study.scene.geometry);
+            let (a, b) = match wall.axis {
+                0 => (1, 2),
+                1 => (0, 2),
+                _ => (0, 1),
+            };
+            let cell = [size[a] / MAP_BINS[0] as f64, size[b] / MAP_BINS[1] as f64];
+            let mut text = format!(
+                "# depo room deposition map: wall {name} ({} = {} m), particle diameter {label} um; \
+                 deposits of the tracked particles over the whole run, per cell\n\
+                 # rows: {} from 0 to {} m in {} cells; columns: {} from 0 to {} m in {} cells\n\
+                 # cell size {} m ({}) x {} m ({})\n",
+                axis[wall.axis],
+                wall.position,
+                axis[a],
+                size[a],
+                MAP_BINS[0],
+                axis[b],
+                size[b],
+                MAP_BINS[1],
+                cell[0],
+                axis[a],
+                cell[1],
+                axis[b],
+            );
+            for row in map.chunks(MAP_BINS[1]) {
+                let cells: Vec<String> = row.iter().map(u32::to_string).collect();
+                text.push_str(&cells.join(","));
+                text.push('\n');
+            }
+            let path = dir.join(format!("room-map-{name}-{label}um.csv"));
+            std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        }
+    }
+    eprintln!(
+        "figures: {} and {}; deposition maps ({}x{} cells per wall): {}/room-map-WALL-SIZEum.csv",
+        deposition.display(),
+        beta.display(),
+        MAP_BINS[0],
+        MAP_BINS[1],
+        dir.display()
+    );
     Ok(())
 }
