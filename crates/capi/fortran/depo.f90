@@ -208,7 +208,8 @@ contains
     law%ptr = c_null_ptr
   end subroutine depo_law_destroy
 
-  !> Caps the threads depo uses for large batches (0: one per core).
+  !> Threads for large batches (0: one per core; 1: only the calling thread, for OpenMP and MPI
+  !> hosts; at most 1024). Batches below 65536 particles always run on the calling thread.
   subroutine depo_set_num_threads(threads, ierr)
     integer, intent(in) :: threads
     integer, intent(out), optional :: ierr

@@ -57,6 +57,17 @@
 #define DEPO_INVALID 3
 
 /**
+ * Batches of this many particles or more may be run on several threads (see
+ * `depo_set_num_threads`); smaller ones always run on the calling thread, in one piece.
+ */
+#define DEPO_PARALLEL_MIN 65536
+
+/**
+ * The largest thread cap `depo_set_num_threads` accepts.
+ */
+#define DEPO_MAX_THREADS 1024
+
+/**
  * An opaque wall law: validated constants, made by `depo_law_new` or `depo_law_preset`, freed by
  * `depo_law_free`. Safe to share between threads for reading.
  */
@@ -218,9 +229,20 @@ int32_t depo_coefficients(const struct DepoWallLaw *law,
                           uint8_t *captured);
 
 /**
- * Caps the threads depo uses for large batches at `threads` (0: rayon's default, one per
- * core or `RAYON_NUM_THREADS`). Host solvers that run their own OpenMP threads or one MPI rank
- * per core call it with 1. Batches below 65536 particles always run on the calling thread.
+ * Sets how many threads depo runs a large batch on (`DEPO_PARALLEL_MIN` particles or more).
+ * Smaller batches always run on the calling thread, in one piece, whatever this setting.
+ *
+ * - `0` (the default): rayon's global pool, one thread per core or `RAYON_NUM_THREADS`. It
+ *   starts at the first large batch and lives until the process exits.
+ * - `1`: the calling thread, for large batches too: depo never starts or wakes a thread. Host
+ *   solvers that run their own OpenMP threads, or one MPI rank per core, call it with 1.
+ * - `2..=DEPO_MAX_THREADS`: a pool of that many threads of depo's own, started by this call;
+ *   it ends when a later call replaces it, once the batches running on it have finished.
+ *
+ * A value above `DEPO_MAX_THREADS` is `DEPO_ERR_INVALID` and changes nothing. The setting is
+ * process-wide: it holds for every thread and every law, and may be changed at any time
+ * (batches already running keep the threads they started with). Results are identical, bit
+ * for bit, for every setting.
  */
 int32_t depo_set_num_threads(size_t threads);
 

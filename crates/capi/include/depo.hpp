@@ -31,7 +31,8 @@ inline void check(std::int32_t status) {
 /// The library's version, "MAJOR.MINOR.PATCH".
 inline std::string version() { return depo_version(); }
 
-/// Caps the threads depo uses for large batches (0: one per core).
+/// Threads for large batches (0: one per core; 1: only the calling thread, for OpenMP and MPI
+/// hosts; at most DEPO_MAX_THREADS). Batches below DEPO_PARALLEL_MIN always run on the caller.
 inline void set_num_threads(std::size_t threads) { check(depo_set_num_threads(threads)); }
 
 /// An owned wall law; move-only.

@@ -337,36 +337,81 @@ pub unsafe extern "C" fn depo_coefficients(
     })
 }
 
-/// The thread pool for depo's calls, if the host capped it; otherwise rayon's global pool.
-static POOL: RwLock<Option<Arc<rayon::ThreadPool>>> = RwLock::new(None);
+/// Batches of this many particles or more may be run on several threads (see
+/// `depo_set_num_threads`); smaller ones always run on the calling thread, in one piece.
+pub const DEPO_PARALLEL_MIN: usize = 65536;
+const _: () = assert!(DEPO_PARALLEL_MIN == depo_wall_model::kernel::PARALLEL_MIN);
 
-/// Caps the threads depo uses for large batches at `threads` (0: rayon's default, one per
-/// core or `RAYON_NUM_THREADS`). Host solvers that run their own OpenMP threads or one MPI rank
-/// per core call it with 1. Batches below 65536 particles always run on the calling thread.
+/// The largest thread cap `depo_set_num_threads` accepts.
+pub const DEPO_MAX_THREADS: usize = 1024;
+
+/// Where depo runs large batches, as set by `depo_set_num_threads`.
+enum Threads {
+    /// rayon's global pool.
+    Global,
+    /// The calling thread: no thread is started or woken.
+    Caller,
+    /// A pool of depo's own, of the capped size.
+    Pool(Arc<rayon::ThreadPool>),
+}
+
+static THREADS: RwLock<Threads> = RwLock::new(Threads::Global);
+
+/// Sets how many threads depo runs a large batch on (`DEPO_PARALLEL_MIN` particles or more).
+/// Smaller batches always run on the calling thread, in one piece, whatever this setting.
+///
+/// - `0` (the default): rayon's global pool, one thread per core or `RAYON_NUM_THREADS`. It
+///   starts at the first large batch and lives until the process exits.
+/// - `1`: the calling thread, for large batches too: depo never starts or wakes a thread. Host
+///   solvers that run their own OpenMP threads, or one MPI rank per core, call it with 1.
+/// - `2..=DEPO_MAX_THREADS`: a pool of that many threads of depo's own, started by this call;
+///   it ends when a later call replaces it, once the batches running on it have finished.
+///
+/// A value above `DEPO_MAX_THREADS` is `DEPO_ERR_INVALID` and changes nothing. The setting is
+/// process-wide: it holds for every thread and every law, and may be changed at any time
+/// (batches already running keep the threads they started with). Results are identical, bit
+/// for bit, for every setting.
 #[no_mangle]
 pub extern "C" fn depo_set_num_threads(threads: usize) -> i32 {
     ffi_guard!({
-        let pool = if threads == 0 {
-            None
-        } else {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .thread_name(|i| format!("depo-{i}"))
-                .build()
-                .map_err(|e| Failure::invalid(format!("cannot start {threads} threads: {e}")))?;
-            Some(Arc::new(pool))
+        let setting = match threads {
+            0 => Threads::Global,
+            1 => Threads::Caller,
+            2..=DEPO_MAX_THREADS => {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .thread_name(|i| format!("depo-{i}"))
+                    .build()
+                    .map_err(|e| Failure::invalid(format!("cannot start {threads} threads: {e}")))?;
+                Threads::Pool(Arc::new(pool))
+            }
+            _ => {
+                return Err(Failure::invalid(format!(
+                    "threads = {threads} is above the most depo accepts (DEPO_MAX_THREADS = {DEPO_MAX_THREADS})"
+                )))
+            }
         };
-        *POOL.write().unwrap_or_else(|e| e.into_inner()) = pool;
+        *THREADS.write().unwrap_or_else(|e| e.into_inner()) = setting;
         Ok(())
     })
 }
 
-/// Runs `f` on the capped pool if there is one.
-fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
-    let pool = POOL.read().unwrap_or_else(|e| e.into_inner()).clone();
+/// Runs the application of the law to a batch of `n` particles where `depo_set_num_threads`
+/// says: `apply(parallel)` is called on the calling thread unless `n` reaches
+/// `DEPO_PARALLEL_MIN` and a pool is allowed, and with `parallel` false it must keep every
+/// piece on the calling thread (`WallLaw::apply_on_calling_thread`). Small batches take no lock.
+fn run_batch<R: Send>(n: usize, apply: impl FnOnce(bool) -> R + Send) -> R {
+    if n < DEPO_PARALLEL_MIN {
+        return apply(false);
+    }
+    let pool = match &*THREADS.read().unwrap_or_else(|e| e.into_inner()) {
+        Threads::Global => None,
+        Threads::Caller => return apply(false),
+        Threads::Pool(pool) => Some(Arc::clone(pool)),
+    };
     match pool {
-        Some(pool) => pool.install(f),
-        None => f(),
+        Some(pool) => pool.install(|| apply(true)),
+        None => apply(true),
     }
 }
 
@@ -488,11 +533,18 @@ unsafe fn apply_raw<T: Real>(
     if let Some(vc) = vc {
         batch = batch.with_capture_velocity(vc).map_err(|e| Failure::invalid(e.to_string()))?;
     }
-    if tally.is_null() {
-        on_pool(|| law.apply(batch, None));
-    } else {
+    let want_tally = !tally.is_null();
+    let sums = run_batch(n, |parallel| {
         let mut sums = Tally::default();
-        on_pool(|| law.apply(batch, Some(&mut sums)));
+        let want = want_tally.then_some(&mut sums);
+        if parallel {
+            law.apply(batch, want);
+        } else {
+            law.apply_on_calling_thread(batch, want);
+        }
+        sums
+    });
+    if want_tally {
         let t = &mut *tally;
         t.rebound += sums.rebound;
         t.captured += sums.captured;

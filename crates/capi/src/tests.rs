@@ -297,8 +297,12 @@ fn f32_and_f64_entry_points_agree() {
     unsafe { depo_law_free(law) };
 }
 
+/// Held by the tests that change the process-wide thread setting.
+static THREAD_SETTING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 #[test]
 fn thread_cap_gives_the_same_results() {
+    let _setting = THREAD_SETTING.lock().unwrap_or_else(|e| e.into_inner());
     let law = new_law(DepoLawParams { p: 1.3, q: 0.7, ..li1997() });
     let rows: Vec<_> = (0..150_000)
         .map(|i| {
@@ -325,6 +329,38 @@ fn thread_cap_gives_the_same_results() {
     assert!(one.0.iter().zip(&two.0).all(|(a, b)| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())));
     assert_eq!(one.1, two.1);
     unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn small_batches_run_on_the_calling_thread_whatever_the_cap_and_1_never_leaves_it() {
+    let _setting = THREAD_SETTING.lock().unwrap_or_else(|e| e.into_inner());
+    let here = std::thread::current().id();
+    let whereabouts = |n: usize| run_batch(n, |parallel| (std::thread::current().id(), parallel));
+    for cap in [0, 1, 2, 3] {
+        assert_eq!(depo_set_num_threads(cap), DEPO_OK);
+        for n in [1, 10, 2000, DEPO_PARALLEL_MIN - 1] {
+            assert_eq!(whereabouts(n), (here, false), "cap {cap}, {n} particles");
+        }
+    }
+    // 1: large batches stay on the calling thread too, in pieces run one after the other.
+    assert_eq!(depo_set_num_threads(1), DEPO_OK);
+    assert_eq!(whereabouts(DEPO_PARALLEL_MIN), (here, false));
+    assert_eq!(whereabouts(10 * DEPO_PARALLEL_MIN), (here, false));
+    // A cap of 2 or more: large batches go to depo's own pool.
+    assert_eq!(depo_set_num_threads(2), DEPO_OK);
+    let name = run_batch(DEPO_PARALLEL_MIN, |parallel| (std::thread::current().name().map(String::from), parallel));
+    assert_eq!(name, (Some("depo-0".to_string()), true));
+    // No cap: rayon's global pool, parallel.
+    assert_eq!(depo_set_num_threads(0), DEPO_OK);
+    assert!(run_batch(DEPO_PARALLEL_MIN, |parallel| parallel));
+    // Absurd caps are refused and change nothing.
+    assert_eq!(depo_set_num_threads(1), DEPO_OK);
+    for absurd in [DEPO_MAX_THREADS + 1, usize::MAX] {
+        assert_eq!(depo_set_num_threads(absurd), DEPO_ERR_INVALID);
+        assert!(last_error().contains("DEPO_MAX_THREADS"), "{}", last_error());
+        assert_eq!(whereabouts(10 * DEPO_PARALLEL_MIN), (here, false), "the setting 1 holds");
+    }
+    assert_eq!(depo_set_num_threads(0), DEPO_OK);
 }
 
 #[test]
