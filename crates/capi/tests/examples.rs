@@ -1,6 +1,6 @@
 //! The C, C++, Fortran and MPI examples, compiled against the real libdepo and run; the C one
 //! also under valgrind, statically linked, and through pkg-config after `install.sh`; the
-//! headers compiled alone with every warning an error.
+//! headers compiled alone with every warning an error; the Fortran module's argument checks.
 //!
 //! A missing compiler or tool fails the test under CI (`CI` set; `.ci/run` installs them) and
 //! is reported and skipped elsewhere.
@@ -234,6 +234,33 @@ fn fortran_example_runs() {
     check_report(&stdout);
     assert!(stdout.contains("rejected: invalid wall-law parameter mu = -1"), "{stdout}");
     assert!(stdout.contains("e(1 m/s) =  0.73199"), "{stdout}");
+}
+
+/// The Fortran module's argument checks (`tests/fortran/checks.f90`): wrong sizes, partial
+/// sets of optional arguments and a missing normal return their status and change nothing;
+/// under valgrind too, so that no array is read or written past its end.
+#[test]
+fn fortran_module_checks_every_argument() {
+    if !have("gfortran") {
+        return;
+    }
+    let dir = out_dir("fortran-checks");
+    let exe = dir.join("checks");
+    run(link_depo(
+        Command::new("gfortran")
+            // The checks compare reals exactly on purpose: a failed call changes nothing.
+            .args(["-std=f2018", "-Wall", "-Wextra", "-Werror", "-Wno-compare-reals", "-g", "-J"])
+            .arg(&dir)
+            .arg(root().join("crates/capi/fortran/depo.f90"))
+            .arg(root().join("crates/capi/tests/fortran/checks.f90"))
+            .arg("-o")
+            .arg(&exe),
+    ));
+    let out = run(&mut Command::new(&exe));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("fortran checks passed"));
+    if have("valgrind") {
+        run(Command::new("valgrind").args(["--error-exitcode=99", "-q"]).arg(&exe));
+    }
 }
 
 #[test]
