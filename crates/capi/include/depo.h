@@ -183,7 +183,8 @@ extern "C" {
 
 /**
  * The message of the last failure on the calling thread ("" if none), valid until the next
- * failing depo call on this thread. Never NULL.
+ * failing depo call on this thread. Never NULL. Safe to call from a thread-exit destructor;
+ * the message of a failure during the thread's teardown may be "".
  */
 const char *depo_last_error(void);
 

@@ -164,9 +164,16 @@ thread_local! {
     static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
 }
 
+/// Keeps `message` for `depo_last_error()`. Never panics: while the thread is being torn down
+/// (a host's pthread-key or thread-local destructor calling depo after depo's storage is gone)
+/// the message is dropped and the status alone reports the failure.
 fn set_last_error(message: &str) {
     let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
-    LAST_ERROR.with(|cell| *cell.borrow_mut() = text);
+    let _ = LAST_ERROR.try_with(|cell| {
+        if let Ok(mut slot) = cell.try_borrow_mut() {
+            *slot = text;
+        }
+    });
 }
 
 /// Runs an exported body: its `Result` becomes a status, a panic becomes `DEPO_ERR_PANIC`, and
@@ -224,10 +231,11 @@ unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Result<&'a mut 
 }
 
 /// The message of the last failure on the calling thread ("" if none), valid until the next
-/// failing depo call on this thread. Never NULL.
+/// failing depo call on this thread. Never NULL. Safe to call from a thread-exit destructor;
+/// the message of a failure during the thread's teardown may be "".
 #[no_mangle]
 pub extern "C" fn depo_last_error() -> *const c_char {
-    LAST_ERROR.with(|cell| cell.borrow().as_ptr())
+    LAST_ERROR.try_with(|cell| cell.try_borrow().map(|text| text.as_ptr()).ok()).ok().flatten().unwrap_or(c"".as_ptr())
 }
 
 /// The library version, "MAJOR.MINOR.PATCH", the same as `DEPO_VERSION` in the header it was

@@ -485,6 +485,57 @@ fn sized_apply_uses_each_particle_s_capture_velocity() {
     unsafe { depo_law_free(law) };
 }
 
+/// A host whose thread-exit destructor (a pthread key's, a C++ or Rust thread-local's) calls
+/// depo after depo's own thread-local storage is gone: the call fails with its status, and
+/// neither it nor `depo_last_error` may abort the process. Run in a child process, since the
+/// failure was an abort.
+#[test]
+fn failing_calls_during_thread_teardown_return_their_status() {
+    use std::sync::atomic::{AtomicI32, AtomicUsize, Ordering};
+    const CHILD: &str = "DEPO_TEST_TEARDOWN_CHILD";
+    static STATUS: AtomicI32 = AtomicI32::new(-1);
+    static MESSAGE_LEN: AtomicUsize = AtomicUsize::new(usize::MAX);
+
+    if std::env::var_os(CHILD).is_some() {
+        struct CallsDepoOnExit;
+        impl Drop for CallsDepoOnExit {
+            fn drop(&mut self) {
+                let mut law = null_mut();
+                let bad = DepoLawParams { kappa2: -1.0, ..li1997() };
+                STATUS.store(unsafe { depo_law_new(&bad, &mut law) }, Ordering::SeqCst);
+                MESSAGE_LEN.store(unsafe { CStr::from_ptr(depo_last_error()) }.to_bytes().len(), Ordering::SeqCst);
+            }
+        }
+        thread_local! {
+            static ON_EXIT: CallsDepoOnExit = const { CallsDepoOnExit };
+        }
+        std::thread::spawn(|| {
+            ON_EXIT.with(|_| ()); // set up first, so torn down after depo's storage
+            let mut law = null_mut();
+            let bad = DepoLawParams { vc: f64::NAN, ..li1997() };
+            assert_eq!(unsafe { depo_law_new(&bad, &mut law) }, DEPO_ERR_INVALID);
+        })
+        .join()
+        .unwrap();
+        assert_eq!(STATUS.load(Ordering::SeqCst), DEPO_ERR_INVALID);
+        assert_ne!(MESSAGE_LEN.load(Ordering::SeqCst), usize::MAX, "depo_last_error returned");
+        println!("teardown calls returned");
+        return;
+    }
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args(["--exact", "tests::failing_calls_during_thread_teardown_return_their_status", "--nocapture"])
+        .env(CHILD, "1")
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && stdout.contains("teardown calls returned"),
+        "{:?}\n{stdout}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 #[test]
 fn a_panic_becomes_a_status_with_its_message() {
     let status = ffi_guard!({
