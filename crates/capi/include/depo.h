@@ -1,4 +1,15 @@
-/* depo: the Brach & Dunn (1998) wall law for Lagrangian particles. C ABI of libdepo. */
+/* depo: the Brach & Dunn (1998) wall law for Lagrangian particles. C ABI of libdepo.
+
+   Conventions:
+   - Every function returns a DEPO_OK / DEPO_ERR_* status; depo_last_error() holds the message
+     of the last failure on the calling thread. A failing call changes nothing.
+   - Arrays are structure-of-arrays: n contiguous values each, aligned as their element type
+     (malloc, new, std::vector and Fortran arrays are; no wider alignment is needed, on x86 or
+     elsewhere). Strided or array-of-structures data is not supported: copy it into arrays.
+   - Outputs (batch arrays written in place, coefficient arrays, deposition counts, the tally)
+     must not overlap the inputs or each other; an overlap is DEPO_ERR_INVALID.
+   - Laws are immutable and may be shared between threads; calls on different threads are
+     independent. The thread setting of depo_set_num_threads is process-wide. */
 
 #ifndef DEPO_H
 #define DEPO_H
@@ -26,7 +37,7 @@
 
 /**
  * A value out of its valid range: a law parameter, a batch normal, an unknown preset id,
- * overlapping arrays, a face id out of range.
+ * overlapping or misaligned arrays, a face id out of range, a thread count.
  */
 #define DEPO_ERR_INVALID 2
 
@@ -91,7 +102,11 @@ typedef struct DepoLawParams {
 
 /**
  * A batch of wall contacts in double precision, as structure-of-arrays pointers into the
- * host's memory. Arrays must not overlap.
+ * host's memory: each array holds `n` contiguous values, aligned as its element type (as
+ * malloc, new, std::vector and Fortran arrays give them; no wider alignment is needed, on x86
+ * or elsewhere). Strided or array-of-structures data is not supported: copy it into arrays
+ * first. Arrays must not overlap each other or `*tally`; a misaligned array or an overlap is
+ * `DEPO_ERR_INVALID`.
  */
 typedef struct DepoImpactsF64 {
     /**
@@ -202,7 +217,8 @@ int32_t depo_law_new(const struct DepoLawParams *params, struct DepoWallLaw **ou
 
 /**
  * Makes the law of a preset of the paper's Table 1 by id (e.g. "li1997-sio2"; friction 0).
- * An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()`.
+ * An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()` (and the id
+ * quoted up to 64 bytes).
  */
 int32_t depo_law_preset(const char *id, struct DepoWallLaw **out);
 
@@ -219,7 +235,8 @@ void depo_law_free(struct DepoWallLaw *law);
 /**
  * The law's coefficients at `n` normal velocities `vn` (m/s; the sign is ignored): overall
  * restitution `e`, material restitution `R`, adhesion `rho`, and 1 where captured else 0.
- * Any output may be NULL. A non-finite `vn` is `DEPO_ERR_INVALID` and writes nothing.
+ * Any output may be NULL. A non-finite `vn`, or outputs that overlap `vn` or each other, is
+ * `DEPO_ERR_INVALID` and writes nothing.
  */
 int32_t depo_coefficients(const struct DepoWallLaw *law,
                           size_t n,
@@ -249,7 +266,8 @@ int32_t depo_set_num_threads(size_t threads);
 
 /**
  * Applies `law` to every particle of `batch` in place, writing one outcome per particle, and
- * adds the batch's counts and energy to `*tally` unless it is NULL. A batch normal not of unit
+ * adds the batch's counts and energy to `*tally` unless it is NULL (it must not overlap the
+ * batch's arrays). A batch normal not of unit
  * length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`. An empty
  * batch (`n == 0`) is `DEPO_OK` and reads no other field.
  */
@@ -285,8 +303,9 @@ int32_t depo_apply_sized_f32(const struct DepoWallLaw *law,
  * `vc[i] = vc_law (diameter[i] / reference_diameter)^(-exponent)`, with `vc_law` the law's
  * capture velocity at `reference_diameter` (m). The paper's simulation rows give
  * `exponent = 1.51`, the JKR theory `5/6`. Only `vc` scales; `k` and `kappa` keep the law's
- * values. A reference diameter that is not finite and positive, a non-finite exponent or a
- * diameter that is not finite and positive is `DEPO_ERR_INVALID` and writes nothing.
+ * values. A reference diameter that is not finite and positive, a non-finite exponent, a
+ * diameter that is not finite and positive, or `capture_velocity` overlapping `diameter` is
+ * `DEPO_ERR_INVALID` and writes nothing.
  */
 int32_t depo_capture_velocities(const struct DepoWallLaw *law,
                                 double reference_diameter,
@@ -302,7 +321,8 @@ int32_t depo_capture_velocities(const struct DepoWallLaw *law,
  *
  * `face` holds the host's face ids, `0 <= face[i] < nfaces` for every captured particle (other
  * particles' ids are not read); `count` and `deposited_mass` have `nfaces` entries. A face id
- * out of range is `DEPO_ERR_INVALID` and changes nothing. One pass over the batch, outside the
+ * out of range, or `count` or `deposited_mass` overlapping another array, is
+ * `DEPO_ERR_INVALID` and changes nothing. One pass over the batch, outside the
  * law's kernel, so a host that wants no map pays nothing.
  */
 int32_t depo_accumulate_deposits(size_t n,

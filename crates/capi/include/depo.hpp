@@ -1,13 +1,13 @@
-// depo.hpp: a header-only C++17 layer over depo.h. Owners free what they hold (RAII), a
+// depo.hpp: a header-only C++11 layer over depo.h. Owners free what they hold (RAII), a
 // failing call throws depo::Error with the library's message, and batches stay views of the
 // caller's arrays.
 #ifndef DEPO_HPP
 #define DEPO_HPP
 
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "depo.h"
 
@@ -46,11 +46,12 @@ class WallLaw {
         return law;
     }
     ~WallLaw() { depo_law_free(law_); }
-    WallLaw(WallLaw &&other) noexcept : law_(std::exchange(other.law_, nullptr)) {}
+    WallLaw(WallLaw &&other) noexcept : law_(other.law_) { other.law_ = nullptr; }
     WallLaw &operator=(WallLaw &&other) noexcept {
         if (this != &other) {
             depo_law_free(law_);
-            law_ = std::exchange(other.law_, nullptr);
+            law_ = other.law_;
+            other.law_ = nullptr;
         }
         return *this;
     }

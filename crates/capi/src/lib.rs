@@ -24,14 +24,14 @@ use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, RwLock};
 
-use depo_wall_model::{Impacts, LawParams, Normals, Outcome, Real, SizeDependence, Tally, WallLaw};
+use depo_wall_model::{Impacts, LawParams, Normals, Outcome, Real, SizeDependence, Tally, UnknownPreset, WallLaw};
 
 /// Success.
 pub const DEPO_OK: i32 = 0;
 /// A pointer that must not be NULL was NULL.
 pub const DEPO_ERR_NULL: i32 = 1;
 /// A value out of its valid range: a law parameter, a batch normal, an unknown preset id,
-/// overlapping arrays, a face id out of range.
+/// overlapping or misaligned arrays, a face id out of range, a thread count.
 pub const DEPO_ERR_INVALID: i32 = 2;
 /// depo panicked; the message is in `depo_last_error()`. A bug: please report it.
 pub const DEPO_ERR_PANIC: i32 = 3;
@@ -97,7 +97,11 @@ pub struct DepoTally {
 }
 
 /// A batch of wall contacts in double precision, as structure-of-arrays pointers into the
-/// host's memory. Arrays must not overlap.
+/// host's memory: each array holds `n` contiguous values, aligned as its element type (as
+/// malloc, new, std::vector and Fortran arrays give them; no wider alignment is needed, on x86
+/// or elsewhere). Strided or array-of-structures data is not supported: copy it into arrays
+/// first. Arrays must not overlap each other or `*tally`; a misaligned array or an overlap is
+/// `DEPO_ERR_INVALID`.
 #[repr(C)]
 #[derive(Debug)]
 pub struct DepoImpactsF64 {
@@ -208,24 +212,35 @@ unsafe fn required<'a, T>(ptr: *const T, what: &str) -> Result<&'a T, Failure> {
     ptr.as_ref().ok_or_else(|| Failure::null(what))
 }
 
-/// A slice from a pointer that must not be NULL when `n > 0`.
+/// Fails unless `ptr` (not NULL) is aligned as `T`, which a slice requires.
+fn check_aligned<T>(ptr: *const T, what: &str) -> Result<(), Failure> {
+    if ptr.is_aligned() {
+        Ok(())
+    } else {
+        Err(Failure::invalid(format!("{what} is not aligned to {} bytes", std::mem::align_of::<T>())))
+    }
+}
+
+/// A slice from a pointer that must not be NULL, and must be aligned, when `n > 0`.
 unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<&'a [T], Failure> {
     if n == 0 {
         Ok(&[])
     } else if ptr.is_null() {
         Err(Failure::null(what))
     } else {
+        check_aligned(ptr, what)?;
         Ok(std::slice::from_raw_parts(ptr, n))
     }
 }
 
-/// A mutable slice from a pointer that must not be NULL when `n > 0`.
+/// A mutable slice from a pointer that must not be NULL, and must be aligned, when `n > 0`.
 unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Result<&'a mut [T], Failure> {
     if n == 0 {
         Ok(&mut [])
     } else if ptr.is_null() {
         Err(Failure::null(what))
     } else {
+        check_aligned(ptr, what)?;
         Ok(std::slice::from_raw_parts_mut(ptr, n))
     }
 }
@@ -261,8 +276,12 @@ pub unsafe extern "C" fn depo_law_new(params: *const DepoLawParams, out: *mut *m
     })
 }
 
+/// The longest preset id quoted whole in an error message.
+const ID_QUOTED_MAX: usize = 64;
+
 /// Makes the law of a preset of the paper's Table 1 by id (e.g. "li1997-sio2"; friction 0).
-/// An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()`.
+/// An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()` (and the id
+/// quoted up to 64 bytes).
 #[no_mangle]
 pub unsafe extern "C" fn depo_law_preset(id: *const c_char, out: *mut *mut DepoWallLaw) -> i32 {
     ffi_guard!({
@@ -273,7 +292,16 @@ pub unsafe extern "C" fn depo_law_preset(id: *const c_char, out: *mut *mut DepoW
             return Err(Failure::null("out"));
         }
         let id = CStr::from_ptr(id).to_str().map_err(|_| Failure::invalid("preset id is not UTF-8"))?;
-        let law = WallLaw::preset(id).map_err(|e| Failure::invalid(e.to_string()))?;
+        let law = WallLaw::preset(id).map_err(|e| {
+            if id.len() <= ID_QUOTED_MAX {
+                return Failure::invalid(e.to_string());
+            }
+            let mut end = ID_QUOTED_MAX;
+            while !id.is_char_boundary(end) {
+                end -= 1;
+            }
+            Failure::invalid(UnknownPreset(format!("{}... ({} bytes)", &id[..end], id.len())).to_string())
+        })?;
         *out = Box::into_raw(Box::new(DepoWallLaw { law }));
         Ok(())
     })
@@ -302,7 +330,8 @@ pub unsafe extern "C" fn depo_law_free(law: *mut DepoWallLaw) {
 
 /// The law's coefficients at `n` normal velocities `vn` (m/s; the sign is ignored): overall
 /// restitution `e`, material restitution `R`, adhesion `rho`, and 1 where captured else 0.
-/// Any output may be NULL. A non-finite `vn` is `DEPO_ERR_INVALID` and writes nothing.
+/// Any output may be NULL. A non-finite `vn`, or outputs that overlap `vn` or each other, is
+/// `DEPO_ERR_INVALID` and writes nothing.
 #[no_mangle]
 #[allow(non_snake_case)] // `R` is the paper's name, and the header's
 pub unsafe extern "C" fn depo_coefficients(
@@ -326,6 +355,12 @@ pub unsafe extern "C" fn depo_coefficients(
             (!rho.is_null()).then(|| slice_mut(rho, n, "rho")).transpose()?,
             (!captured.is_null()).then(|| slice_mut(captured, n, "captured")).transpose()?,
         );
+        let mut arrays = vec![("vn", span(vn))];
+        arrays.extend(outputs.0.as_deref().map(|s| ("e", span(s))));
+        arrays.extend(outputs.1.as_deref().map(|s| ("R", span(s))));
+        arrays.extend(outputs.2.as_deref().map(|s| ("rho", span(s))));
+        arrays.extend(outputs.3.as_deref().map(|s| ("captured", span(s))));
+        check_disjoint(&arrays)?;
         for (i, &v) in vn.iter().enumerate() {
             let c = law.coefficients(v);
             if let Some(out) = outputs.0.as_deref_mut() {
@@ -429,6 +464,23 @@ fn span<T>(s: &[T]) -> (usize, usize) {
     (start, start + std::mem::size_of_val(s))
 }
 
+/// Up to 13 named byte ranges (a batch's arrays and its tally), kept on the stack.
+#[derive(Default)]
+struct Spans {
+    items: [(&'static str, (usize, usize)); 13],
+    len: usize,
+}
+
+impl Spans {
+    fn push(&mut self, name: &'static str, range: (usize, usize)) {
+        self.items[self.len] = (name, range);
+        self.len += 1;
+    }
+    fn as_slice(&self) -> &[(&'static str, (usize, usize))] {
+        &self.items[..self.len]
+    }
+}
+
 /// Fails if any two non-empty arrays overlap (creating the slices would otherwise be undefined
 /// behaviour). O(arrays^2), independent of `n`.
 fn check_disjoint(arrays: &[(&str, (usize, usize))]) -> Result<(), Failure> {
@@ -518,17 +570,31 @@ unsafe fn apply_raw<T: Real>(
         _ => return Err(Failure::null("one of nx, ny, nz (give all three or none)")),
     };
 
-    let mut arrays = vec![("vx", span(vx)), ("vy", span(vy)), ("vz", span(vz)), ("outcome", span(outcome))];
+    // The arrays given, on the stack: a heap list costs a small batch tens of nanoseconds.
+    let mut arrays = Spans::default();
+    arrays.push("vx", span(vx));
+    arrays.push("vy", span(vy));
+    arrays.push("vz", span(vz));
+    arrays.push("outcome", span(outcome));
     if let Some((wx, wy, wz, radius)) = &spin {
-        arrays.extend([("wx", span(wx)), ("wy", span(wy)), ("wz", span(wz)), ("radius", span(radius))]);
+        arrays.push("wx", span(wx));
+        arrays.push("wy", span(wy));
+        arrays.push("wz", span(wz));
+        arrays.push("radius", span(radius));
     }
     if let Some([nx, ny, nz]) = &per_particle {
-        arrays.extend([("nx", span(nx)), ("ny", span(ny)), ("nz", span(nz))]);
+        arrays.push("nx", span(nx));
+        arrays.push("ny", span(ny));
+        arrays.push("nz", span(nz));
     }
     if let Some(vc) = vc {
-        arrays.push(("capture_velocity", span(vc)));
+        arrays.push("capture_velocity", span(vc));
     }
-    check_disjoint(&arrays)?;
+    if !tally.is_null() {
+        check_aligned(tally.cast_const(), "tally")?;
+        arrays.push("tally", (tally as usize, tally as usize + std::mem::size_of::<DepoTally>()));
+    }
+    check_disjoint(arrays.as_slice())?;
 
     let normals = match per_particle {
         Some(n) => Normals::PerParticle(n),
@@ -567,7 +633,8 @@ unsafe fn apply_raw<T: Real>(
 }
 
 /// Applies `law` to every particle of `batch` in place, writing one outcome per particle, and
-/// adds the batch's counts and energy to `*tally` unless it is NULL. A batch normal not of unit
+/// adds the batch's counts and energy to `*tally` unless it is NULL (it must not overlap the
+/// batch's arrays). A batch normal not of unit
 /// length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`. An empty
 /// batch (`n == 0`) is `DEPO_OK` and reads no other field.
 #[no_mangle]
@@ -619,8 +686,9 @@ pub unsafe extern "C" fn depo_apply_sized_f32(
 /// `vc[i] = vc_law (diameter[i] / reference_diameter)^(-exponent)`, with `vc_law` the law's
 /// capture velocity at `reference_diameter` (m). The paper's simulation rows give
 /// `exponent = 1.51`, the JKR theory `5/6`. Only `vc` scales; `k` and `kappa` keep the law's
-/// values. A reference diameter that is not finite and positive, a non-finite exponent or a
-/// diameter that is not finite and positive is `DEPO_ERR_INVALID` and writes nothing.
+/// values. A reference diameter that is not finite and positive, a non-finite exponent, a
+/// diameter that is not finite and positive, or `capture_velocity` overlapping `diameter` is
+/// `DEPO_ERR_INVALID` and writes nothing.
 #[no_mangle]
 pub unsafe extern "C" fn depo_capture_velocities(
     law: *const DepoWallLaw,
@@ -638,6 +706,7 @@ pub unsafe extern "C" fn depo_capture_velocities(
             return Err(Failure::invalid(format!("diameter[{i}] = {} is not finite and positive", diameter[i])));
         }
         let out = slice_mut(capture_velocity, n, "capture_velocity")?;
+        check_disjoint(&[("diameter", span(diameter)), ("capture_velocity", span(out))])?;
         let vc_law = law.params().vc;
         for (vc, &d) in out.iter_mut().zip(diameter) {
             *vc = size.capture_velocity(vc_law, d);

@@ -99,6 +99,95 @@ fn presets_by_id_and_unknown_ids() {
 }
 
 #[test]
+fn a_huge_unknown_preset_id_is_quoted_short() {
+    let id = CString::new("x".repeat(1_000_000)).unwrap();
+    let mut law = null_mut();
+    assert_eq!(unsafe { depo_law_preset(id.as_ptr(), &mut law) }, DEPO_ERR_INVALID);
+    assert!(law.is_null());
+    let message = last_error();
+    assert!(message.len() < 1000, "{} bytes", message.len());
+    assert!(message.contains(&format!("'{}... (1000000 bytes)'", "x".repeat(64))), "{message}");
+    assert!(message.contains("li1997-sio2"), "{message}");
+    // Multi-byte characters are cut on a character boundary.
+    let id = CString::new("é".repeat(100)).unwrap();
+    assert_eq!(unsafe { depo_law_preset(id.as_ptr(), &mut law) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains(&format!("'{}... (200 bytes)'", "é".repeat(32))), "{}", last_error());
+}
+
+#[test]
+fn misaligned_arrays_are_refused_and_change_nothing() {
+    let law = new_law(li1997());
+    let rows = [([0.1, 0.0, -1.0], [0.0; 3], 1e-5, [0.0, 0.0, 1.0]); 4];
+    let mut a = Arrays::new(&rows);
+    // Four doubles one byte into a buffer: a valid address, but not aligned to 8 bytes.
+    let mut words = [0u64; 5];
+    let misaligned = unsafe { words.as_mut_ptr().cast::<u8>().add(1) }.cast::<f64>();
+    let mut b = a.batch(false, false);
+    b.vz = misaligned;
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, null_mut()) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("vz is not aligned to 8 bytes"), "{}", last_error());
+    assert_eq!(a.outcome, [255; 4]);
+    let mut tally_words = [0u64; std::mem::size_of::<DepoTally>() / 8 + 1];
+    let tally = unsafe { tally_words.as_mut_ptr().cast::<u8>().add(4) }.cast::<DepoTally>();
+    assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(false, false), tally) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("tally is not aligned"), "{}", last_error());
+    assert_eq!(a.outcome, [255; 4]);
+    let vn = [1.0; 4];
+    assert_eq!(
+        unsafe { depo_coefficients(law, 4, vn.as_ptr(), misaligned, null_mut(), null_mut(), null_mut()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(words, [0; 5]);
+    assert_eq!(tally_words, [0; std::mem::size_of::<DepoTally>() / 8 + 1]);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn outputs_that_overlap_inputs_are_refused_and_change_nothing() {
+    let law = new_law(li1997());
+    // Coefficients: an output on vn, or two outputs on one array.
+    let mut vn = [1.0, 2.0, 3.0];
+    let (mut e, mut r) = ([9.0; 3], [9.0; 3]);
+    let p = vn.as_mut_ptr();
+    assert_eq!(unsafe { depo_coefficients(law, 3, p, p, null_mut(), null_mut(), null_mut()) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("vn and e overlap"), "{}", last_error());
+    assert_eq!(vn, [1.0, 2.0, 3.0]);
+    let e_ptr = e.as_mut_ptr();
+    assert_eq!(
+        unsafe { depo_coefficients(law, 3, vn.as_ptr(), e_ptr, e_ptr, null_mut(), null_mut()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(e, [9.0; 3]);
+    assert_eq!(
+        unsafe { depo_coefficients(law, 3, vn.as_ptr(), e.as_mut_ptr(), r.as_mut_ptr(), null_mut(), null_mut()) },
+        DEPO_OK
+    );
+    // Capture velocities written over the diameters.
+    let mut d = [35e-6, 70e-6];
+    let dp = d.as_mut_ptr();
+    assert_eq!(unsafe { depo_capture_velocities(law, 70e-6, 1.51, 2, dp, dp) }, DEPO_ERR_INVALID);
+    assert_eq!(d, [35e-6, 70e-6]);
+    // A tally inside a batch array.
+    let rows = [([0.1, 0.0, -1.0], [0.0; 3], 1e-5, [0.0, 0.0, 1.0]); 16];
+    let mut a = Arrays::new(&rows);
+    let mut b = a.batch(false, false);
+    let inside = unsafe { b.vx.add(4) }.cast::<DepoTally>();
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, inside) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("vx and tally overlap"), "{}", last_error());
+    assert_eq!((a.outcome[0], a.v[0][4]), (255, 0.1));
+    // Deposition counts over the face ids.
+    let outcome = [DEPO_CAPTURED; 2];
+    let mut face = [0i64, 1];
+    let f = face.as_mut_ptr();
+    assert_eq!(
+        unsafe { depo_accumulate_deposits(2, outcome.as_ptr(), f, null(), 2, f.cast::<u64>(), null_mut()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(face, [0, 1]);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
 fn version_matches_the_crate() {
     let v = unsafe { CStr::from_ptr(depo_version()) }.to_str().unwrap();
     assert_eq!(v, env!("CARGO_PKG_VERSION"));

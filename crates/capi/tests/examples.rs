@@ -120,11 +120,11 @@ fn headers_compile_alone() {
     )
     .arg("-o")
     .arg(dir.join("h.o")));
-    run(c_flags(
-        Command::new("c++").args(["-std=c++17", &include("crates/capi/include"), "-c"]).arg(dir.join("hpp.cpp")),
-    )
-    .arg("-o")
-    .arg(dir.join("hpp.o")));
+    for std in ["-std=c++11", "-std=c++17"] {
+        run(c_flags(Command::new("c++").args([std, &include("crates/capi/include"), "-c"]).arg(dir.join("hpp.cpp")))
+            .arg("-o")
+            .arg(dir.join("hpp.o")));
+    }
 }
 
 #[test]
