@@ -62,8 +62,9 @@
 #define DEPO_SKIPPED 2
 
 /**
- * Non-finite velocity or spin, radius `<= 0`, or a per-particle normal not of unit length
- * within 1e-4: untouched.
+ * Non-finite velocity or spin, a radius (with spin) that is not finite or below 1e-150 m in
+ * double precision, 1e-18 m in single (subnormal and zero radii included: the spin change
+ * goes as `1 / r`), or a per-particle normal not of unit length within 1e-4: untouched.
  */
 #define DEPO_INVALID 3
 

@@ -42,8 +42,9 @@ pub const DEPO_REBOUND: u8 = 0;
 pub const DEPO_CAPTURED: u8 = 1;
 /// Not an impact (`v . n >= 0`): untouched.
 pub const DEPO_SKIPPED: u8 = 2;
-/// Non-finite velocity or spin, radius `<= 0`, or a per-particle normal not of unit length
-/// within 1e-4: untouched.
+/// Non-finite velocity or spin, a radius (with spin) that is not finite or below 1e-150 m in
+/// double precision, 1e-18 m in single (subnormal and zero radii included: the spin change
+/// goes as `1 / r`), or a per-particle normal not of unit length within 1e-4: untouched.
 pub const DEPO_INVALID: u8 = 3;
 
 /// The constants of the law (SI units; see MODEL.md): restitution velocities `k1, k2` (m/s),

@@ -328,6 +328,44 @@ fn bad_particles_are_flagged_and_the_tally_adds_up() {
 }
 
 #[test]
+fn tiny_radii_with_spin_are_invalid_not_infinite_spin() {
+    let law = new_law(li1997());
+    let row = |radius: f64| ([0.5, 0.0, -1.0], [0.0, 10.0, 0.0], radius, [0.0, 0.0, 1.0]);
+    let rows = [row(1e-310), row(f64::MIN_POSITIVE), row(1e-200), row(1e-150), row(1e-9)];
+    let mut a = Arrays::new(&rows);
+    assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(true, false), null_mut()) }, DEPO_OK);
+    assert_eq!(a.outcome, [DEPO_INVALID, DEPO_INVALID, DEPO_INVALID, DEPO_REBOUND, DEPO_REBOUND]);
+    for k in 0..3 {
+        assert!(a.w[k].iter().chain(&a.v[k]).all(|x| x.is_finite()), "{:?} {:?}", a.w, a.v);
+    }
+    assert_eq!(a.w[1][..3], [10.0; 3], "invalid particles are untouched");
+    // Single precision: the floor is 1e-18 m.
+    let (mut vx, mut vy, mut vz) = ([0.5f32; 3], [0.0f32; 3], [-1.0f32; 3]);
+    let (mut wx, mut wy, mut wz) = ([0.0f32; 3], [10.0f32; 3], [0.0f32; 3]);
+    let radius = [1e-40f32, 1e-20, 1e-9];
+    let mut out = [9u8; 3];
+    let mut b = DepoImpactsF32 {
+        n: 3,
+        vx: vx.as_mut_ptr(),
+        vy: vy.as_mut_ptr(),
+        vz: vz.as_mut_ptr(),
+        wx: wx.as_mut_ptr(),
+        wy: wy.as_mut_ptr(),
+        wz: wz.as_mut_ptr(),
+        radius: radius.as_ptr(),
+        nx: null(),
+        ny: null(),
+        nz: null(),
+        normal: [0.0, 0.0, 1.0],
+        outcome: out.as_mut_ptr(),
+    };
+    assert_eq!(unsafe { depo_apply_f32(law, &mut b, null_mut()) }, DEPO_OK);
+    assert_eq!(out, [DEPO_INVALID, DEPO_INVALID, DEPO_REBOUND]);
+    assert!(wx.iter().chain(&wy).chain(&wz).all(|x| x.is_finite()));
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
 fn f32_and_f64_entry_points_agree() {
     let law = new_law(li1997());
     let n = 1000;

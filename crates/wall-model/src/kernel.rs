@@ -305,8 +305,10 @@ fn sweep<
             let mut valid = all_finite(v) & unit_normal;
             if SPIN {
                 // The radius joins the finiteness sum: `r < inf` beside `r > 0` became an
-                // integer range check (8 more instructions per four impacts, AVX2, f64).
-                valid &= all_finite([w[0], w[1], w[2], r]) & (r > T::ZERO);
+                // integer range check (8 more instructions per four impacts, AVX2, f64). The
+                // floor is `1 / BIG` rather than 0: the spin change goes as `1 / r`, which for a
+                // subnormal radius overflowed to an infinite spin on a "rebound".
+                valid &= all_finite([w[0], w[1], w[2], r]) & (r >= T::ONE / T::BIG);
             }
             if PER_VC {
                 valid &= vcs[i].is_finite();
