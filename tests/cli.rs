@@ -209,6 +209,27 @@ fn fit_names_bad_rows_and_warns_on_extrapolation() {
 }
 
 #[test]
+fn failed_and_degenerate_fits_are_errors_with_their_reason() {
+    let example = "examples/li1997-synthetic.csv";
+    // The default q = 1 does not fit these data: a negative vc, not a success.
+    user_error(&["fit", example], "vc = -");
+    user_error(&["fit", example, "--q", "0.5", "--p", "100"], "the fit failed");
+    let same = write_csv("same.csv", &format!("vn,e\n{}", "0.5,0.7\n".repeat(5)));
+    user_error(&["fit", same.to_str().unwrap(), "--q", "0.5"], "the fit failed");
+    let high = write_csv("high.csv", "vn,e\n0.1,0.3\n0.2,1.5\n");
+    user_error(&["fit", high.to_str().unwrap()], "high.csv:3: e = 1.5 is outside [0, 1]");
+    let low = write_csv("low.csv", "vn,e\n0.1,-0.2\n");
+    user_error(&["fit", low.to_str().unwrap()], "low.csv:2: e = -0.2 is outside [0, 1]");
+    user_error(&["fit", example, "--q", "0"], "--q 0: the exponent must be finite and positive");
+    user_error(&["fit", example, "--q=-1"], "--q -1");
+    user_error(&["fit", example, "--p", "nan"], "--p NaN");
+    user_error(&["fit", example, "--q", "0.5", "--format", "csv"], "fit prints a table or JSON");
+    for path in [same, high, low] {
+        std::fs::remove_file(path).ok();
+    }
+}
+
+#[test]
 fn figures_are_written() {
     let dir = std::env::temp_dir().join(format!("depo-figures-{}", std::process::id()));
     let out = depo(&["figures", "--out", dir.to_str().unwrap()]);
