@@ -230,6 +230,48 @@ fn failed_and_degenerate_fits_are_errors_with_their_reason() {
 }
 
 #[test]
+fn impact_prints_csv() {
+    let out = depo(&["impact", "--preset", "li1997-sio2", "--mu", "0.5", "--velocity", "0.5,0,-1", "--format", "csv"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 2, "{text}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let row: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(header.len(), row.len(), "{text}");
+    let field = |name: &str| row[header.iter().position(|h| *h == name).unwrap()];
+    assert!((field("e").parse::<f64>().unwrap() - 0.731_990_683).abs() < 1e-9);
+    assert_eq!(field("outcome"), "rebound");
+    assert_eq!(field("wx_after"), "", "spin not tracked");
+    assert!((field("vx_after").parse::<f64>().unwrap() - 2.5 / 7.0).abs() < 1e-12);
+}
+
+#[test]
+fn huge_sizes_fail_with_one_line() {
+    user_error(&["bench", "--n", "18446744073709551615"], "--n 18446744073709551615 needs more than 2^64 bytes");
+    user_error(&["bench", "--n", "100000000000000"], "--n 100000000000000 needs");
+    user_error(&["curve", "--preset", "li1997-sio2", "--points", "100000000000000"], "--points 100000000000000 needs");
+    let dir = scratch("huge");
+    let room = dir.join("room.toml");
+    std::fs::write(&room, "[particles]\ncount = 1000000000000000\n").unwrap();
+    user_error(&["room", room.to_str().unwrap(), "--no-plot"], "`particles.count` = 1000000000000000 needs");
+    let channel = dir.join("channel.toml");
+    std::fs::write(&channel, "[particles]\nexcursion_count = 1000000000000000\n").unwrap();
+    user_error(&["channel", channel.to_str().unwrap()], "`particles.excursion_count` = 1000000000000000 needs");
+}
+
+#[test]
+fn a_time_step_longer_than_the_run_is_an_error() {
+    let dir = scratch("dt");
+    let room = dir.join("room.toml");
+    std::fs::write(&room, "[run]\ndt = 100.0\nduration = 10.0\n").unwrap();
+    user_error(&["room", room.to_str().unwrap(), "--no-plot"], "`run.dt` = 100 s is longer than the run");
+    let channel = dir.join("channel.toml");
+    std::fs::write(&channel, "[run]\ndt_plus = 50.0\nduration_plus = 10.0\n").unwrap();
+    user_error(&["channel", channel.to_str().unwrap()], "`run.dt_plus` = 50");
+}
+
+#[test]
 fn figures_are_written() {
     let dir = std::env::temp_dir().join(format!("depo-figures-{}", std::process::id()));
     let out = depo(&["figures", "--out", dir.to_str().unwrap()]);
