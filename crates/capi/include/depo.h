@@ -7,7 +7,8 @@
      (malloc, new, std::vector and Fortran arrays are; no wider alignment is needed, on x86 or
      elsewhere). Strided or array-of-structures data is not supported: copy it into arrays.
    - Outputs (batch arrays written in place, coefficient arrays, deposition counts, the tally)
-     must not overlap the inputs or each other; an overlap is DEPO_ERR_INVALID.
+     must not overlap the inputs or each other; an overlap is DEPO_ERR_INVALID, except the
+     tally's, which is not checked (it is written after the batch is done).
    - Laws are immutable and may be shared between threads; calls on different threads are
      independent. The thread setting of depo_set_num_threads is process-wide. */
 
@@ -106,8 +107,8 @@ typedef struct DepoLawParams {
  * host's memory: each array holds `n` contiguous values, aligned as its element type (as
  * malloc, new, std::vector and Fortran arrays give them; no wider alignment is needed, on x86
  * or elsewhere). Strided or array-of-structures data is not supported: copy it into arrays
- * first. Arrays must not overlap each other or `*tally`; a misaligned array or an overlap is
- * `DEPO_ERR_INVALID`.
+ * first. Arrays must not overlap each other (`DEPO_ERR_INVALID`, as is a misaligned array)
+ * nor the tally (not checked).
  */
 typedef struct DepoImpactsF64 {
     /**
@@ -267,8 +268,8 @@ int32_t depo_set_num_threads(size_t threads);
 
 /**
  * Applies `law` to every particle of `batch` in place, writing one outcome per particle, and
- * adds the batch's counts and energy to `*tally` unless it is NULL (it must not overlap the
- * batch's arrays). A batch normal not of unit
+ * adds the batch's counts and energy to `*tally` unless it is NULL (aligned as `DepoTally`,
+ * and not overlapping the batch's arrays, which is not checked). A batch normal not of unit
  * length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`. An empty
  * batch (`n == 0`) is `DEPO_OK` and reads no other field.
  */

@@ -167,14 +167,6 @@ fn outputs_that_overlap_inputs_are_refused_and_change_nothing() {
     let dp = d.as_mut_ptr();
     assert_eq!(unsafe { depo_capture_velocities(law, 70e-6, 1.51, 2, dp, dp) }, DEPO_ERR_INVALID);
     assert_eq!(d, [35e-6, 70e-6]);
-    // A tally inside a batch array.
-    let rows = [([0.1, 0.0, -1.0], [0.0; 3], 1e-5, [0.0, 0.0, 1.0]); 16];
-    let mut a = Arrays::new(&rows);
-    let mut b = a.batch(false, false);
-    let inside = unsafe { b.vx.add(4) }.cast::<DepoTally>();
-    assert_eq!(unsafe { depo_apply_f64(law, &mut b, inside) }, DEPO_ERR_INVALID);
-    assert!(last_error().contains("vx and tally overlap"), "{}", last_error());
-    assert_eq!((a.outcome[0], a.v[0][4]), (255, 0.1));
     // Deposition counts over the face ids.
     let outcome = [DEPO_CAPTURED; 2];
     let mut face = [0i64, 1];
