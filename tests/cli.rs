@@ -240,6 +240,69 @@ fn fit_names_bad_rows_and_warns_on_extrapolation() {
 }
 
 #[test]
+fn failed_and_degenerate_fits_are_errors_with_their_reason() {
+    let example = "examples/li1997-synthetic.csv";
+    // The default q = 1 does not fit these data: a negative vc, not a success.
+    user_error(&["fit", example], "vc = -");
+    user_error(&["fit", example, "--q", "0.5", "--p", "100"], "the fit failed");
+    let same = write_csv("same.csv", &format!("vn,e\n{}", "0.5,0.7\n".repeat(5)));
+    user_error(&["fit", same.to_str().unwrap(), "--q", "0.5"], "the fit failed");
+    let high = write_csv("high.csv", "vn,e\n0.1,0.3\n0.2,1.5\n");
+    user_error(&["fit", high.to_str().unwrap()], "high.csv:3: e = 1.5 is outside [0, 1]");
+    let low = write_csv("low.csv", "vn,e\n0.1,-0.2\n");
+    user_error(&["fit", low.to_str().unwrap()], "low.csv:2: e = -0.2 is outside [0, 1]");
+    user_error(&["fit", example, "--q", "0"], "--q 0: the exponent must be finite and positive");
+    user_error(&["fit", example, "--q=-1"], "--q -1");
+    user_error(&["fit", example, "--p", "nan"], "--p NaN");
+    user_error(&["fit", example, "--q", "0.5", "--format", "csv"], "fit prints a table or JSON");
+    for path in [same, high, low] {
+        std::fs::remove_file(path).ok();
+    }
+}
+
+#[test]
+fn impact_prints_csv() {
+    let out = depo(&["impact", "--preset", "li1997-sio2", "--mu", "0.5", "--velocity", "0.5,0,-1", "--format", "csv"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 2, "{text}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let row: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(header.len(), row.len(), "{text}");
+    let field = |name: &str| row[header.iter().position(|h| *h == name).unwrap()];
+    assert!((field("e").parse::<f64>().unwrap() - 0.731_990_683).abs() < 1e-9);
+    assert_eq!(field("outcome"), "rebound");
+    assert_eq!(field("wx_after"), "", "spin not tracked");
+    assert!((field("vx_after").parse::<f64>().unwrap() - 2.5 / 7.0).abs() < 1e-12);
+}
+
+#[test]
+fn huge_sizes_fail_with_one_line() {
+    user_error(&["bench", "--n", "18446744073709551615"], "--n 18446744073709551615 needs more than 2^64 bytes");
+    user_error(&["bench", "--n", "100000000000000"], "--n 100000000000000 needs");
+    user_error(&["curve", "--preset", "li1997-sio2", "--points", "100000000000000"], "--points 100000000000000 needs");
+    let dir = scratch("huge");
+    let room = dir.join("room.toml");
+    std::fs::write(&room, "[particles]\ncount = 1000000000000000\n").unwrap();
+    user_error(&["room", room.to_str().unwrap(), "--no-plot"], "`particles.count` = 1000000000000000 needs");
+    let channel = dir.join("channel.toml");
+    std::fs::write(&channel, "[particles]\nexcursion_count = 1000000000000000\n").unwrap();
+    user_error(&["channel", channel.to_str().unwrap()], "`particles.excursion_count` = 1000000000000000 needs");
+}
+
+#[test]
+fn a_time_step_longer_than_the_run_is_an_error() {
+    let dir = scratch("dt");
+    let room = dir.join("room.toml");
+    std::fs::write(&room, "[run]\ndt = 100.0\nduration = 10.0\n").unwrap();
+    user_error(&["room", room.to_str().unwrap(), "--no-plot"], "`run.dt` = 100 s is longer than the run");
+    let channel = dir.join("channel.toml");
+    std::fs::write(&channel, "[run]\ndt_plus = 50.0\nduration_plus = 10.0\n").unwrap();
+    user_error(&["channel", channel.to_str().unwrap()], "`run.dt_plus` = 50");
+}
+
+#[test]
 fn figures_are_written() {
     let dir = std::env::temp_dir().join(format!("depo-figures-{}", std::process::id()));
     let out = depo(&["figures", "--out", dir.to_str().unwrap()]);

@@ -11,7 +11,7 @@ use depo::tracker::Scheme;
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{print_csv_rows, progress_bar, Error, Format};
+use super::{check_memory, print_csv_rows, progress_bar, Error, Format};
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
@@ -56,6 +56,8 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
     if args.n < 1000 || args.threads == 0 || args.reps == 0 {
         return Err("--n must be at least 1000, --threads and --reps at least 1".into());
     }
+    // Two copies (pristine and working) of velocity, spin, radius, normals and outcome in f64.
+    check_memory(&format!("--n {}", args.n), args.n as u64, 2 * 81)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build().map_err(|e| e.to_string())?;
     let scenarios: Vec<_> =
         standard_scenarios(args.n).into_iter().filter(|s| s.label().contains(&args.filter)).collect();

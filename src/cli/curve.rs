@@ -6,7 +6,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{print_csv, Error, Format, LawArgs};
+use super::{check_memory, print_csv, Error, Format, LawArgs};
 
 #[derive(Args, Debug)]
 pub struct CurveArgs {
@@ -68,6 +68,8 @@ pub fn run(args: &CurveArgs) -> Result<(), Error> {
     if args.points < 2 {
         return Err(format!("--points {}: need at least 2", args.points));
     }
+    // A point and its line of output.
+    check_memory(&format!("--points {}", args.points), args.points as u64, 256)?;
     let n = args.points;
     let points: Vec<Point> = (0..n)
         .map(|i| {

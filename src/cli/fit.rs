@@ -95,12 +95,21 @@ fn read(path: &PathBuf) -> Result<Vec<Sample>, Error> {
         if w <= 0.0 {
             return Err(format!("{name}:{line}: weight must be positive"));
         }
-        samples.push(Sample { speed: speed.abs(), restitution: number(e, "e")?, weight: w });
+        let restitution = number(e, "e")?;
+        if !(0.0..=1.0).contains(&restitution) {
+            return Err(format!("{name}:{line}: e = {restitution} is outside [0, 1]"));
+        }
+        samples.push(Sample { speed: speed.abs(), restitution, weight: w });
     }
     Ok(samples)
 }
 
 pub fn run(args: &FitArgs) -> Result<(), Error> {
+    for (name, value) in [("--p", args.p), ("--q", args.q)] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(format!("{name} {value}: the exponent must be finite and positive"));
+        }
+    }
     let samples = read(&args.data)?;
     let exponents = if args.free_exponents {
         Exponents::Free { p: args.p, q: args.q }
@@ -108,6 +117,7 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
         Exponents::Fixed { p: args.p, q: args.q }
     };
     let report = fit(&samples, exponents).map_err(|e| format!("{}: {e}", args.data.display()))?;
+    check_fit(&report, args).map_err(|e| format!("{}: {e}", args.data.display()))?;
     let FitReport { params, standard_errors: se, .. } = report;
     let out = Output {
         k: params.k1,
@@ -129,7 +139,7 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
     };
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?),
-        Format::Csv => return Err("depo fit prints a table or JSON (--format json)".into()),
+        Format::Csv => return Err("fit prints a table or JSON, not CSV (--format json)".into()),
         Format::Table => {
             out!("{} samples from {}", out.samples, args.data.display());
             out!("k      {:.6} +- {:.2e} m/s", out.k, out.k_se);
@@ -164,6 +174,43 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
         let series = [Series::markers("data", data), Series::line("fit: e = R (1 - rho)", curve)];
         plot::lines(path, "Fit of Eq. (10)", "|vn| (m/s)", "e", &series, true)?;
         eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// A fit that converged to something unusable is an error with its reason: a capture velocity
+/// that is not positive (the data do not show capture under these exponents), or an
+/// estimate, standard error or fitting index that is not finite (the data do not determine
+/// the constants, e.g. identical rows or an exponent far from the data's).
+fn check_fit(report: &FitReport, args: &FitArgs) -> Result<(), Error> {
+    let (params, se) = (&report.params, &report.standard_errors);
+    let exponents = if args.free_exponents { "fitted" } else { "fixed" };
+    let values = [
+        ("k", params.k1),
+        ("kappa", params.kappa1),
+        ("vc", params.vc),
+        ("p", params.p),
+        ("q", params.q),
+        ("the standard error of k", se.k1),
+        ("the standard error of kappa", se.kappa1),
+        ("the standard error of vc", se.vc),
+        ("the standard error of p", se.p),
+        ("the standard error of q", se.q),
+        ("the fitting index", report.fitting_index),
+        ("the RMSE", report.rmse),
+    ];
+    if let Some((name, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
+        return Err(format!(
+            "the fit failed: {name} is {value} (the data do not determine the constants with p = {}, q = {} {exponents})",
+            params.p, params.q
+        ));
+    }
+    if params.vc <= 0.0 {
+        return Err(format!(
+            "the fit failed: vc = {} m/s is not positive with p = {}, q = {} {exponents}; try other --p and --q, or \
+             --free-exponents",
+            params.vc, params.p, params.q
+        ));
     }
     Ok(())
 }

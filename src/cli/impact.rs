@@ -7,7 +7,7 @@ use depo::wall_model::CaptureMode;
 use glam::DVec3;
 use serde::Serialize;
 
-use super::{parse_vector, Error, Format, LawArgs};
+use super::{parse_vector, print_csv, Error, Format, LawArgs};
 
 #[derive(Args, Debug)]
 pub struct ImpactArgs {
@@ -28,7 +28,7 @@ pub struct ImpactArgs {
     /// Keep a captured particle on the wall with its tangential motion instead of depositing it.
     #[arg(long)]
     keep_on_wall: bool,
-    /// Output format (table or json).
+    /// Output format: table, csv (one header line and one row) or json.
     #[arg(long, value_enum, default_value_t)]
     format: Format,
 }
@@ -112,7 +112,61 @@ pub fn run(args: &ImpactArgs) -> Result<(), Error> {
     };
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?),
-        Format::Csv => return Err("depo impact prints a table or JSON (--format json)".into()),
+        Format::Csv => {
+            let r = &report;
+            let [vx, vy, vz] = r.velocity_after;
+            // Spin columns are empty when spin is not tracked.
+            let [wx, wy, wz] =
+                r.spin_after.map_or([String::new(), String::new(), String::new()], |w| w.map(|x| x.to_string()));
+            print_csv(
+                &[
+                    "normal_velocity",
+                    "impact",
+                    "outcome",
+                    "regime",
+                    "R",
+                    "rho",
+                    "e",
+                    "slip_before",
+                    "tangential_impulse",
+                    "vx_after",
+                    "vy_after",
+                    "vz_after",
+                    "wx_after",
+                    "wy_after",
+                    "wz_after",
+                    "kinetic_energy_before",
+                    "kinetic_energy_after",
+                    "loss_material",
+                    "loss_adhesion",
+                    "loss_friction",
+                    "loss_deposition",
+                ],
+                [[
+                    r.normal_velocity.to_string(),
+                    r.impact.to_string(),
+                    r.outcome.to_string(),
+                    r.regime.to_string(),
+                    r.r.to_string(),
+                    r.rho.to_string(),
+                    r.e.to_string(),
+                    r.slip_before.to_string(),
+                    r.tangential_impulse.to_string(),
+                    vx.to_string(),
+                    vy.to_string(),
+                    vz.to_string(),
+                    wx,
+                    wy,
+                    wz,
+                    r.kinetic_energy_before.to_string(),
+                    r.kinetic_energy_after.to_string(),
+                    r.loss_material.to_string(),
+                    r.loss_adhesion.to_string(),
+                    r.loss_friction.to_string(),
+                    r.loss_deposition.to_string(),
+                ]],
+            )?
+        }
         Format::Table => {
             let r = &report;
             out!("normal velocity vn     {:.6} m/s", r.normal_velocity);

@@ -109,6 +109,33 @@ impl LawArgs {
     }
 }
 
+/// Fails with one line when `items` of about `bytes_each` bytes would not fit in this
+/// machine's memory (`MemTotal` of /proc/meminfo, or the address space where that is not
+/// readable), instead of a capacity-overflow panic or an allocation-failure abort later.
+pub fn check_memory(what: &str, items: u64, bytes_each: u64) -> Result<(), Error> {
+    let limit = physical_memory().unwrap_or(isize::MAX as u64).min(isize::MAX as u64);
+    match items.checked_mul(bytes_each) {
+        Some(need) if need <= limit => Ok(()),
+        need => Err(format!(
+            "{what} needs {} of memory, more than this machine's {}",
+            need.map_or_else(|| "more than 2^64 bytes".to_string(), gigabytes),
+            gigabytes(limit)
+        )),
+    }
+}
+
+fn gigabytes(bytes: u64) -> String {
+    format!("{:.1} GB", bytes as f64 / 1e9)
+}
+
+/// Total physical memory in bytes, where the system says.
+fn physical_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kib.checked_mul(1024)
+}
+
 /// Parses "X,Y,Z" into three numbers.
 pub fn parse_vector(text: &str) -> Result<[f64; 3], String> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();

@@ -10,7 +10,7 @@ use depo::tracker::{Drag, Flow, Geometry, Scene, WallBehaviour};
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
 
-use super::Error;
+use super::{check_memory, Error};
 
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
@@ -313,6 +313,15 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
     if file.run.dt_plus.is_some() || file.run.duration_plus.is_some() {
         return Err(format!("{}: a room takes `run.dt` and `run.duration` in seconds", path.display()));
     }
+    // A zero duration is a run that only checks its scene.
+    if scene.duration > 0.0 && scene.dt > scene.duration {
+        return Err(format!(
+            "{}: `run.dt` = {} s is longer than the run, `run.duration` = {} s",
+            path.display(),
+            scene.dt,
+            scene.duration
+        ));
+    }
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
     set(&mut study.transient, file.run.transient);
     check_transient(path, study.transient)?;
@@ -344,6 +353,10 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
         }
         study.penetration = p;
     }
+    check_count(path, "particles.count", study.count)?;
+    if study.target_error.is_some() {
+        check_count(path, "particles.max_count", study.max_count)?;
+    }
     if study.diameters.is_empty() {
         return Err(format!("{}: `particles.diameters` is empty", path.display()));
     }
@@ -368,10 +381,17 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     let time = unit / u_star;
     scene.geometry = Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 2.0 * re_tau * unit };
     scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
-    scene.dt = file.run.dt_plus.unwrap_or(0.2) * time;
-    scene.duration = file.run.duration_plus.unwrap_or(3000.0) * time;
+    let (dt_plus, duration_plus) = (file.run.dt_plus.unwrap_or(0.2), file.run.duration_plus.unwrap_or(3000.0));
+    scene.dt = dt_plus * time;
+    scene.duration = duration_plus * time;
     if file.run.dt.is_some() || file.run.duration.is_some() {
         return Err(format!("{}: a channel takes `run.dt_plus` and `run.duration_plus` in wall units", path.display()));
+    }
+    if duration_plus > 0.0 && dt_plus > duration_plus {
+        return Err(format!(
+            "{}: `run.dt_plus` = {dt_plus} is longer than the run, `run.duration_plus` = {duration_plus}",
+            path.display()
+        ));
     }
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
@@ -387,8 +407,16 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     set(&mut study.tau_plus, file.particles.tau_plus);
     set(&mut study.count, file.particles.count);
     set(&mut study.excursion_count, file.particles.excursion_count);
+    check_count(path, "particles.count", study.count)?;
+    check_count(path, "particles.excursion_count", study.excursion_count)?;
     set(&mut study.density, file.particles.density);
     Ok(study)
+}
+
+/// A particle count whose particles would not fit in memory is one line, not an abort.
+fn check_count(path: &Path, key: &str, count: usize) -> Result<(), Error> {
+    // A particle's state, its random stream and its share of the results, generously.
+    check_memory(&format!("{}: `{key}` = {count}", path.display()), count as u64, 512)
 }
 
 fn check_transient(path: &Path, transient: f64) -> Result<(), Error> {

@@ -1,5 +1,7 @@
 //! What the C ABI adds to the kernel: `depo_apply_f64` against `WallLaw::apply` on the same
-//! 1e6-impact batch (f64, tally on), timed interleaved, on the current thread pool.
+//! 1e6-impact batch (f64, tally on), timed interleaved, on the current thread pool; and the
+//! time per call of small batches (10 and 2000 impacts) with no thread cap, `depo_set_num_threads(1)`
+//! and a cap of 2, which must all run on the calling thread at the same cost.
 //!
 //! The C entry points are compiled into this bench from the crate's source (the library itself
 //! is built only as cdylib/staticlib) and called exactly as C calls them.
@@ -11,8 +13,11 @@ mod capi;
 
 use std::time::{Duration, Instant};
 
-use capi::{depo_apply_f64, depo_law_free, depo_law_preset, DepoImpactsF64, DepoTally, DepoWallLaw, DEPO_OK};
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use capi::{
+    depo_apply_f64, depo_law_free, depo_law_preset, depo_set_num_threads, DepoImpactsF64, DepoTally, DepoWallLaw,
+    DEPO_OK,
+};
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use depo_wall_model::{Impacts, Normals, Outcome, Tally, WallLaw};
 
 const N: usize = 1_000_000;
@@ -125,5 +130,54 @@ fn overhead(c: &mut Criterion) {
     unsafe { depo_law_free(c_law) };
 }
 
-criterion_group!(benches, overhead);
+/// Time per call of a small batch (below the parallel threshold) by thread cap: small batches
+/// run on the calling thread whatever the cap, so the three must cost the same.
+fn small_batches(c: &mut Criterion) {
+    let mut law: *mut DepoWallLaw = std::ptr::null_mut();
+    assert_eq!(unsafe { depo_law_preset(c"sim-70um".as_ptr(), &mut law) }, DEPO_OK);
+    let pristine = Data::new();
+    for n in [10, 2000] {
+        let mut group = c.benchmark_group(format!("abi {n} f64 tally by thread cap"));
+        group.throughput(Throughput::Elements(n as u64));
+        for (cap, label) in [(0, "uncapped"), (1, "cap 1 (caller)"), (2, "cap 2")] {
+            assert_eq!(depo_set_num_threads(cap), DEPO_OK);
+            let fresh = || {
+                ([pristine.v[0][..n].to_vec(), pristine.v[1][..n].to_vec(), pristine.v[2][..n].to_vec()], vec![0u8; n])
+            };
+            group.bench_function(label, |b| {
+                b.iter_batched_ref(
+                    fresh,
+                    |(v, outcome)| {
+                        let [vx, vy, vz] = v;
+                        let mut batch = DepoImpactsF64 {
+                            n,
+                            vx: vx.as_mut_ptr(),
+                            vy: vy.as_mut_ptr(),
+                            vz: vz.as_mut_ptr(),
+                            wx: std::ptr::null_mut(),
+                            wy: std::ptr::null_mut(),
+                            wz: std::ptr::null_mut(),
+                            radius: std::ptr::null(),
+                            nx: std::ptr::null(),
+                            ny: std::ptr::null(),
+                            nz: std::ptr::null(),
+                            normal: [0.0, 0.0, 1.0],
+                            outcome: outcome.as_mut_ptr(),
+                        };
+                        let mut tally = DepoTally::default();
+                        let status = unsafe { depo_apply_f64(law, &mut batch, &mut tally) };
+                        assert_eq!(status, DEPO_OK);
+                        std::hint::black_box(tally)
+                    },
+                    BatchSize::SmallInput,
+                )
+            });
+        }
+        group.finish();
+    }
+    assert_eq!(depo_set_num_threads(0), DEPO_OK);
+    unsafe { depo_law_free(law) };
+}
+
+criterion_group!(benches, overhead, small_batches);
 criterion_main!(benches);

@@ -4,6 +4,12 @@
 !> friendly wrappers with an optional ierr argument (absent: a failure stops the program with
 !> depo's message). Arrays pass by address, never copied: the solver's own arrays are updated
 !> in place. Free a law with depo_law_destroy; nothing relies on final procedures.
+!>
+!> Every array is checked against the batch size before libdepo sees it, and optional arguments
+!> that come in sets (nx, ny, nz; wx, wy, wz with radius; mass with deposited_mass) are given
+!> whole or not at all: otherwise the call fails (DEPO_ERR_INVALID for a size, DEPO_ERR_NULL
+!> for a partial set, as C), changes nothing, and depo_last_error_message() says why.
+!> depo_apply takes double (c_double) or single (c_float) precision arrays.
 module depo
   use, intrinsic :: iso_c_binding
   implicit none
@@ -12,7 +18,7 @@ module depo
   public :: depo_law_t, depo_law_params, depo_tally
   public :: DEPO_OK, DEPO_ERR_NULL, DEPO_ERR_INVALID, DEPO_ERR_PANIC
   public :: DEPO_REBOUND, DEPO_CAPTURED, DEPO_SKIPPED, DEPO_INVALID
-  public :: depo_law_create, depo_law_from_preset, depo_law_destroy
+  public :: depo_law_create, depo_law_from_preset, depo_law_destroy, depo_law_get_params
   public :: depo_apply, depo_coefficients, depo_capture_velocities, depo_accumulate_deposits
   public :: depo_set_num_threads
   public :: depo_last_error_message, depo_version_string
@@ -45,11 +51,32 @@ module depo
     type(c_ptr) :: outcome = c_null_ptr
   end type depo_impacts_f64
 
+  !> DepoImpactsF32: depo_impacts_f64 in single precision.
+  type, bind(C) :: depo_impacts_f32
+    integer(c_size_t) :: n = 0
+    type(c_ptr) :: vx = c_null_ptr, vy = c_null_ptr, vz = c_null_ptr
+    type(c_ptr) :: wx = c_null_ptr, wy = c_null_ptr, wz = c_null_ptr
+    type(c_ptr) :: radius = c_null_ptr
+    type(c_ptr) :: nx = c_null_ptr, ny = c_null_ptr, nz = c_null_ptr
+    real(c_float) :: normal(3) = [0.0_c_float, 0.0_c_float, 1.0_c_float]
+    type(c_ptr) :: outcome = c_null_ptr
+  end type depo_impacts_f32
+
   !> An opaque wall law.
   type :: depo_law_t
     private
     type(c_ptr) :: ptr = c_null_ptr
   end type depo_law_t
+
+  !> Applies the law in place to a batch of double or single precision arrays.
+  interface depo_apply
+    module procedure depo_apply_f64, depo_apply_f32
+  end interface depo_apply
+
+  !> The message of the last failure found on the Fortran side (sizes, partial sets), cleared
+  !> by a failure of libdepo's own; one per thread under OpenMP.
+  character(len=256), save :: wrapper_error = ''
+  !$omp threadprivate(wrapper_error)
 
   interface
     function c_depo_law_new(params, out) bind(C, name="depo_law_new") result(status)
@@ -65,6 +92,13 @@ module depo
       type(c_ptr), intent(out) :: out
       integer(c_int32_t) :: status
     end function c_depo_law_preset
+
+    function c_depo_law_params(law, params) bind(C, name="depo_law_params") result(status)
+      import :: depo_law_params, c_ptr, c_int32_t
+      type(c_ptr), value :: law
+      type(depo_law_params), intent(out) :: params
+      integer(c_int32_t) :: status
+    end function c_depo_law_params
 
     subroutine c_depo_law_free(law) bind(C, name="depo_law_free")
       import :: c_ptr
@@ -86,6 +120,22 @@ module depo
       type(c_ptr), value :: vc, tally
       integer(c_int32_t) :: status
     end function c_depo_apply_sized_f64
+
+    function c_depo_apply_f32(law, batch, tally) bind(C, name="depo_apply_f32") result(status)
+      import :: c_ptr, depo_impacts_f32, c_int32_t
+      type(c_ptr), value :: law
+      type(depo_impacts_f32), intent(inout) :: batch
+      type(c_ptr), value :: tally
+      integer(c_int32_t) :: status
+    end function c_depo_apply_f32
+
+    function c_depo_apply_sized_f32(law, batch, vc, tally) bind(C, name="depo_apply_sized_f32") result(status)
+      import :: c_ptr, depo_impacts_f32, c_int32_t
+      type(c_ptr), value :: law
+      type(depo_impacts_f32), intent(inout) :: batch
+      type(c_ptr), value :: vc, tally
+      integer(c_int32_t) :: status
+    end function c_depo_apply_sized_f32
 
     function c_depo_capture_velocities(law, reference_diameter, exponent, n, diameter, vc) &
       bind(C, name="depo_capture_velocities") result(status)
@@ -150,10 +200,14 @@ contains
     end do
   end function from_c_string
 
-  !> The message of the last failure on this thread.
+  !> The message of the last failure on this thread, found by this module or by libdepo.
   function depo_last_error_message() result(message)
     character(len=:), allocatable :: message
-    message = from_c_string(c_depo_last_error())
+    if (len_trim(wrapper_error) > 0) then
+      message = trim(wrapper_error)
+    else
+      message = from_c_string(c_depo_last_error())
+    end if
   end function depo_last_error_message
 
   !> The library version, "MAJOR.MINOR.PATCH".
@@ -166,6 +220,7 @@ contains
   subroutine handle(status, ierr)
     integer(c_int32_t), intent(in) :: status
     integer, intent(out), optional :: ierr
+    if (status /= DEPO_OK) wrapper_error = ''
     if (present(ierr)) then
       ierr = int(status)
     else if (status /= DEPO_OK) then
@@ -173,17 +228,70 @@ contains
     end if
   end subroutine handle
 
-  !> Reports a failure found on the Fortran side (array sizes): DEPO_ERR_INVALID to ierr, or
-  !> stops with the message when ierr is absent.
-  subroutine fail(message, ierr)
+  !> Reports a failure found on the Fortran side: status (DEPO_ERR_INVALID unless given) to
+  !> ierr with the message kept for depo_last_error_message, or stops with the message when
+  !> ierr is absent.
+  subroutine fail(message, ierr, status)
     character(len=*), intent(in) :: message
     integer, intent(out), optional :: ierr
+    integer(c_int32_t), intent(in), optional :: status
+    wrapper_error = message
     if (present(ierr)) then
       ierr = DEPO_ERR_INVALID
+      if (present(status)) ierr = int(status)
     else
       error stop "depo: "//message
     end if
   end subroutine fail
+
+  !> The size of an optional array, -1 when absent.
+  pure integer function size_or_absent_f64(x) result(length)
+    real(c_double), intent(in), optional :: x(:)
+    length = -1
+    if (present(x)) length = size(x)
+  end function size_or_absent_f64
+
+  pure integer function size_or_absent_f32(x) result(length)
+    real(c_float), intent(in), optional :: x(:)
+    length = -1
+    if (present(x)) length = size(x)
+  end function size_or_absent_f32
+
+  !> Checks depo_apply's arguments, given their sizes (-1: absent): every array of size n, sets
+  !> of optional arguments given whole, a normal given one way or the other. Returns DEPO_OK,
+  !> or the status for fail() with the message in problem.
+  subroutine check_apply(n, sizes, has_normal, status, problem)
+    integer, intent(in) :: n
+    !> vy, vz, outcome, nx, ny, nz, wx, wy, wz, radius, capture_velocity
+    integer, intent(in) :: sizes(11)
+    logical, intent(in) :: has_normal
+    integer(c_int32_t), intent(out) :: status
+    character(len=:), allocatable, intent(out) :: problem
+    character(len=*), parameter :: names(11) = [character(len=16) :: 'vy', 'vz', 'outcome', 'nx', 'ny', 'nz', &
+                                                'wx', 'wy', 'wz', 'radius', 'capture_velocity']
+    character(len=24) :: sizes_text
+    integer :: k
+    status = DEPO_OK
+    problem = ''
+    do k = 1, 11
+      if (sizes(k) >= 0 .and. sizes(k) /= n) then
+        write (sizes_text, '(i0, a, i0)') sizes(k), ' but vx has ', n
+        status = DEPO_ERR_INVALID
+        problem = 'depo_apply: '//trim(names(k))//' has size '//trim(sizes_text)
+        return
+      end if
+    end do
+    if (any(sizes(4:6) >= 0) .and. .not. all(sizes(4:6) >= 0)) then
+      status = DEPO_ERR_NULL
+      problem = 'depo_apply: give nx, ny and nz together, or none of them'
+    else if (any(sizes(7:10) >= 0) .and. .not. all(sizes(7:10) >= 0)) then
+      status = DEPO_ERR_NULL
+      problem = 'depo_apply: give wx, wy, wz and radius together, or none of them'
+    else if (.not. has_normal .and. sizes(4) < 0) then
+      status = DEPO_ERR_INVALID
+      problem = 'depo_apply: give the wall normal, as normal or as nx, ny and nz'
+    end if
+  end subroutine check_apply
 
   !> Makes a law from its constants.
   subroutine depo_law_create(law, params, ierr)
@@ -201,6 +309,15 @@ contains
     call handle(c_depo_law_preset(trim(id)//c_null_char, law%ptr), ierr)
   end subroutine depo_law_from_preset
 
+  !> Reads the constants of a law back (depo_law_params in C; the name depo_law_params is the
+  !> type's here).
+  subroutine depo_law_get_params(law, params, ierr)
+    type(depo_law_t), intent(in) :: law
+    type(depo_law_params), intent(out) :: params
+    integer, intent(out), optional :: ierr
+    call handle(c_depo_law_params(law%ptr, params), ierr)
+  end subroutine depo_law_get_params
+
   !> Frees a law; a law never made is fine.
   subroutine depo_law_destroy(law)
     type(depo_law_t), intent(inout) :: law
@@ -208,18 +325,26 @@ contains
     law%ptr = c_null_ptr
   end subroutine depo_law_destroy
 
-  !> Caps the threads depo uses for large batches (0: one per core).
+  !> Threads for large batches (0: one per core; 1: only the calling thread, for OpenMP and MPI
+  !> hosts; at most 1024). Batches below 65536 particles always run on the calling thread.
   subroutine depo_set_num_threads(threads, ierr)
     integer, intent(in) :: threads
     integer, intent(out), optional :: ierr
+    if (threads < 0) then
+      call fail("depo_set_num_threads: threads is negative", ierr)
+      return
+    end if
     call handle(c_depo_set_num_threads(int(threads, c_size_t)), ierr)
   end subroutine depo_set_num_threads
 
   !> Applies the law in place to the particles (vx, vy, vz) hitting a wall, with one batch
-  !> normal or per-particle normals (nx, ny, nz), optional spin (wx, wy, wz with radius) and
-  !> optional per-particle capture velocities (polydisperse batches, see depo_capture_velocities).
-  !> outcome receives one DEPO_* code per particle; tally, when present, is added to.
-  subroutine depo_apply(law, vx, vy, vz, outcome, normal, nx, ny, nz, wx, wy, wz, radius, capture_velocity, tally, ierr)
+  !> normal or per-particle normals (nx, ny, nz) (one of the two is required), optional spin
+  !> (wx, wy, wz with radius) and optional per-particle capture velocities (polydisperse
+  !> batches, see depo_capture_velocities). outcome receives one DEPO_* code per particle;
+  !> tally, when present, is added to. Every array has the size of vx. (Specific of depo_apply
+  !> for c_double arrays.)
+  subroutine depo_apply_f64(law, vx, vy, vz, outcome, normal, nx, ny, nz, wx, wy, wz, radius, capture_velocity, tally, &
+                            ierr)
     type(depo_law_t), intent(in) :: law
     real(c_double), intent(inout), target, contiguous :: vx(:), vy(:), vz(:)
     integer(c_int8_t), intent(inout), target, contiguous :: outcome(:)
@@ -231,11 +356,16 @@ contains
     integer, intent(out), optional :: ierr
     type(depo_impacts_f64) :: batch
     type(c_ptr) :: tally_ptr, vc_ptr
+    integer(c_int32_t) :: status
+    character(len=:), allocatable :: problem
     integer :: n
 
     n = size(vx)
-    if (size(vy) /= n .or. size(vz) /= n .or. size(outcome) /= n) then
-      call fail("depo_apply: vx, vy, vz and outcome must have the same size", ierr)
+    call check_apply(n, [size(vy), size(vz), size(outcome), size_or_absent_f64(nx), size_or_absent_f64(ny), &
+                         size_or_absent_f64(nz), size_or_absent_f64(wx), size_or_absent_f64(wy), size_or_absent_f64(wz), &
+                         size_or_absent_f64(radius), size_or_absent_f64(capture_velocity)], present(normal), status, problem)
+    if (status /= DEPO_OK) then
+      call fail(problem, ierr, status)
       return
     end if
     batch%n = int(n, c_size_t)
@@ -244,33 +374,90 @@ contains
       batch%vy = c_loc(vy)
       batch%vz = c_loc(vz)
       batch%outcome = c_loc(outcome)
-      if (present(nx) .and. present(ny) .and. present(nz)) then
+      if (present(nx)) then
         batch%nx = c_loc(nx)
         batch%ny = c_loc(ny)
         batch%nz = c_loc(nz)
       end if
-      if (present(wx) .and. present(wy) .and. present(wz)) then
+      if (present(wx)) then
         batch%wx = c_loc(wx)
         batch%wy = c_loc(wy)
         batch%wz = c_loc(wz)
+        batch%radius = c_loc(radius)
       end if
-      if (present(radius)) batch%radius = c_loc(radius)
     end if
     if (present(normal)) batch%normal = normal
     tally_ptr = c_null_ptr
     if (present(tally)) tally_ptr = c_loc(tally)
     if (present(capture_velocity)) then
-      if (size(capture_velocity) /= n) then
-        call fail("depo_apply: capture_velocity must have the size of vx", ierr)
-        return
-      end if
       vc_ptr = c_null_ptr
       if (n > 0) vc_ptr = c_loc(capture_velocity)
       call handle(c_depo_apply_sized_f64(law%ptr, batch, vc_ptr, tally_ptr), ierr)
     else
       call handle(c_depo_apply_f64(law%ptr, batch, tally_ptr), ierr)
     end if
-  end subroutine depo_apply
+  end subroutine depo_apply_f64
+
+  !> Applies the law in place to the particles (vx, vy, vz) hitting a wall, with one batch
+  !> normal or per-particle normals (nx, ny, nz) (one of the two is required), optional spin
+  !> (wx, wy, wz with radius) and optional per-particle capture velocities (polydisperse
+  !> batches, see depo_capture_velocities). outcome receives one DEPO_* code per particle;
+  !> tally, when present, is added to. Every array has the size of vx. (Specific of depo_apply
+  !> for c_float arrays.)
+  subroutine depo_apply_f32(law, vx, vy, vz, outcome, normal, nx, ny, nz, wx, wy, wz, radius, capture_velocity, tally, &
+                            ierr)
+    type(depo_law_t), intent(in) :: law
+    real(c_float), intent(inout), target, contiguous :: vx(:), vy(:), vz(:)
+    integer(c_int8_t), intent(inout), target, contiguous :: outcome(:)
+    real(c_float), intent(in), optional :: normal(3)
+    real(c_float), intent(in), target, contiguous, optional :: nx(:), ny(:), nz(:), radius(:)
+    real(c_float), intent(inout), target, contiguous, optional :: wx(:), wy(:), wz(:)
+    real(c_float), intent(in), target, contiguous, optional :: capture_velocity(:)
+    type(depo_tally), intent(inout), target, optional :: tally
+    integer, intent(out), optional :: ierr
+    type(depo_impacts_f32) :: batch
+    type(c_ptr) :: tally_ptr, vc_ptr
+    integer(c_int32_t) :: status
+    character(len=:), allocatable :: problem
+    integer :: n
+
+    n = size(vx)
+    call check_apply(n, [size(vy), size(vz), size(outcome), size_or_absent_f32(nx), size_or_absent_f32(ny), &
+                         size_or_absent_f32(nz), size_or_absent_f32(wx), size_or_absent_f32(wy), size_or_absent_f32(wz), &
+                         size_or_absent_f32(radius), size_or_absent_f32(capture_velocity)], present(normal), status, problem)
+    if (status /= DEPO_OK) then
+      call fail(problem, ierr, status)
+      return
+    end if
+    batch%n = int(n, c_size_t)
+    if (n > 0) then
+      batch%vx = c_loc(vx)
+      batch%vy = c_loc(vy)
+      batch%vz = c_loc(vz)
+      batch%outcome = c_loc(outcome)
+      if (present(nx)) then
+        batch%nx = c_loc(nx)
+        batch%ny = c_loc(ny)
+        batch%nz = c_loc(nz)
+      end if
+      if (present(wx)) then
+        batch%wx = c_loc(wx)
+        batch%wy = c_loc(wy)
+        batch%wz = c_loc(wz)
+        batch%radius = c_loc(radius)
+      end if
+    end if
+    if (present(normal)) batch%normal = normal
+    tally_ptr = c_null_ptr
+    if (present(tally)) tally_ptr = c_loc(tally)
+    if (present(capture_velocity)) then
+      vc_ptr = c_null_ptr
+      if (n > 0) vc_ptr = c_loc(capture_velocity)
+      call handle(c_depo_apply_sized_f32(law%ptr, batch, vc_ptr, tally_ptr), ierr)
+    else
+      call handle(c_depo_apply_f32(law%ptr, batch, tally_ptr), ierr)
+    end if
+  end subroutine depo_apply_f32
 
   !> Capture velocities (m/s) from diameters (m), paper Fig. 8:
   !> vc = vc_law (diameter / reference_diameter)**(-exponent); 1.51 in the paper, 5/6 for JKR.
@@ -303,7 +490,20 @@ contains
     integer(c_int8_t), intent(out), target, contiguous, optional :: captured(:)
     integer, intent(out), optional :: ierr
     type(c_ptr) :: pv, pe, pr, prho, pc
+    integer :: n, sizes(3)
     pv = c_null_ptr; pe = c_null_ptr; pr = c_null_ptr; prho = c_null_ptr; pc = c_null_ptr
+    n = size(vn)
+    sizes = [size_or_absent_f64(e), size_or_absent_f64(r), size_or_absent_f64(rho)]
+    if (any(sizes >= 0 .and. sizes /= n)) then
+      call fail("depo_coefficients: e, r and rho must have the size of vn", ierr)
+      return
+    end if
+    if (present(captured)) then
+      if (size(captured) /= n) then
+        call fail("depo_coefficients: captured must have the size of vn", ierr)
+        return
+      end if
+    end if
     if (size(vn) > 0) then
       pv = c_loc(vn)
       if (present(e)) pe = c_loc(e)
@@ -330,6 +530,16 @@ contains
     if (size(face) /= size(outcome)) then
       call fail("depo_accumulate_deposits: face must have the size of outcome", ierr)
       return
+    end if
+    if (present(mass) .neqv. present(deposited_mass)) then
+      call fail("depo_accumulate_deposits: give mass and deposited_mass together, or neither", ierr, DEPO_ERR_NULL)
+      return
+    end if
+    if (present(mass)) then
+      if (size(mass) /= size(outcome) .or. size(deposited_mass) /= size(count)) then
+        call fail("depo_accumulate_deposits: mass must have the size of outcome, deposited_mass that of count", ierr)
+        return
+      end if
     end if
     if (size(outcome) > 0) then
       po = c_loc(outcome)

@@ -1,4 +1,16 @@
-/* depo: the Brach & Dunn (1998) wall law for Lagrangian particles. C ABI of libdepo. */
+/* depo: the Brach & Dunn (1998) wall law for Lagrangian particles. C ABI of libdepo.
+
+   Conventions:
+   - Every function returns a DEPO_OK / DEPO_ERR_* status; depo_last_error() holds the message
+     of the last failure on the calling thread. A failing call changes nothing.
+   - Arrays are structure-of-arrays: n contiguous values each, aligned as their element type
+     (malloc, new, std::vector and Fortran arrays are; no wider alignment is needed, on x86 or
+     elsewhere). Strided or array-of-structures data is not supported: copy it into arrays.
+   - Outputs (batch arrays written in place, coefficient arrays, deposition counts, the tally)
+     must not overlap the inputs or each other; an overlap is DEPO_ERR_INVALID, except the
+     tally's, which is not checked (it is written after the batch is done).
+   - Laws are immutable and may be shared between threads; calls on different threads are
+     independent. The thread setting of depo_set_num_threads is process-wide. */
 
 #ifndef DEPO_H
 #define DEPO_H
@@ -26,7 +38,7 @@
 
 /**
  * A value out of its valid range: a law parameter, a batch normal, an unknown preset id,
- * overlapping arrays, a face id out of range.
+ * overlapping or misaligned arrays, a face id out of range, a thread count.
  */
 #define DEPO_ERR_INVALID 2
 
@@ -51,10 +63,22 @@
 #define DEPO_SKIPPED 2
 
 /**
- * Non-finite velocity or spin, radius `<= 0`, or a per-particle normal not of unit length
- * within 1e-4: untouched.
+ * Non-finite velocity or spin, a radius (with spin) that is not finite or below 1e-150 m in
+ * double precision, 1e-18 m in single (subnormal and zero radii included: the spin change
+ * goes as `1 / r`), or a per-particle normal not of unit length within 1e-4: untouched.
  */
 #define DEPO_INVALID 3
+
+/**
+ * Batches of this many particles or more may be run on several threads (see
+ * `depo_set_num_threads`); smaller ones always run on the calling thread, in one piece.
+ */
+#define DEPO_PARALLEL_MIN 65536
+
+/**
+ * The largest thread cap `depo_set_num_threads` accepts.
+ */
+#define DEPO_MAX_THREADS 1024
 
 /**
  * An opaque wall law: validated constants, made by `depo_law_new` or `depo_law_preset`, freed by
@@ -80,7 +104,11 @@ typedef struct DepoLawParams {
 
 /**
  * A batch of wall contacts in double precision, as structure-of-arrays pointers into the
- * host's memory. Arrays must not overlap.
+ * host's memory: each array holds `n` contiguous values, aligned as its element type (as
+ * malloc, new, std::vector and Fortran arrays give them; no wider alignment is needed, on x86
+ * or elsewhere). Strided or array-of-structures data is not supported: copy it into arrays
+ * first. Arrays must not overlap each other (`DEPO_ERR_INVALID`, as is a misaligned array)
+ * nor the tally (not checked).
  */
 typedef struct DepoImpactsF64 {
     /**
@@ -172,7 +200,8 @@ extern "C" {
 
 /**
  * The message of the last failure on the calling thread ("" if none), valid until the next
- * failing depo call on this thread. Never NULL.
+ * failing depo call on this thread. Never NULL. Safe to call from a thread-exit destructor;
+ * the message of a failure during the thread's teardown may be "".
  */
 const char *depo_last_error(void);
 
@@ -190,7 +219,8 @@ int32_t depo_law_new(const struct DepoLawParams *params, struct DepoWallLaw **ou
 
 /**
  * Makes the law of a preset of the paper's Table 1 by id (e.g. "li1997-sio2"; friction 0).
- * An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()`.
+ * An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()` (and the id
+ * quoted up to 64 bytes).
  */
 int32_t depo_law_preset(const char *id, struct DepoWallLaw **out);
 
@@ -207,7 +237,8 @@ void depo_law_free(struct DepoWallLaw *law);
 /**
  * The law's coefficients at `n` normal velocities `vn` (m/s; the sign is ignored): overall
  * restitution `e`, material restitution `R`, adhesion `rho`, and 1 where captured else 0.
- * Any output may be NULL. A non-finite `vn` is `DEPO_ERR_INVALID` and writes nothing.
+ * Any output may be NULL. A non-finite `vn`, or outputs that overlap `vn` or each other, is
+ * `DEPO_ERR_INVALID` and writes nothing.
  */
 int32_t depo_coefficients(const struct DepoWallLaw *law,
                           size_t n,
@@ -218,15 +249,27 @@ int32_t depo_coefficients(const struct DepoWallLaw *law,
                           uint8_t *captured);
 
 /**
- * Caps the threads depo uses for large batches at `threads` (0: rayon's default, one per
- * core or `RAYON_NUM_THREADS`). Host solvers that run their own OpenMP threads or one MPI rank
- * per core call it with 1. Batches below 65536 particles always run on the calling thread.
+ * Sets how many threads depo runs a large batch on (`DEPO_PARALLEL_MIN` particles or more).
+ * Smaller batches always run on the calling thread, in one piece, whatever this setting.
+ *
+ * - `0` (the default): rayon's global pool, one thread per core or `RAYON_NUM_THREADS`. It
+ *   starts at the first large batch and lives until the process exits.
+ * - `1`: the calling thread, for large batches too: depo never starts or wakes a thread. Host
+ *   solvers that run their own OpenMP threads, or one MPI rank per core, call it with 1.
+ * - `2..=DEPO_MAX_THREADS`: a pool of that many threads of depo's own, started by this call;
+ *   it ends when a later call replaces it, once the batches running on it have finished.
+ *
+ * A value above `DEPO_MAX_THREADS` is `DEPO_ERR_INVALID` and changes nothing. The setting is
+ * process-wide: it holds for every thread and every law, and may be changed at any time
+ * (batches already running keep the threads they started with). Results are identical, bit
+ * for bit, for every setting.
  */
 int32_t depo_set_num_threads(size_t threads);
 
 /**
  * Applies `law` to every particle of `batch` in place, writing one outcome per particle, and
- * adds the batch's counts and energy to `*tally` unless it is NULL. A batch normal not of unit
+ * adds the batch's counts and energy to `*tally` unless it is NULL (aligned as `DepoTally`,
+ * and not overlapping the batch's arrays, which is not checked). A batch normal not of unit
  * length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`. An empty
  * batch (`n == 0`) is `DEPO_OK` and reads no other field.
  */
@@ -262,8 +305,9 @@ int32_t depo_apply_sized_f32(const struct DepoWallLaw *law,
  * `vc[i] = vc_law (diameter[i] / reference_diameter)^(-exponent)`, with `vc_law` the law's
  * capture velocity at `reference_diameter` (m). The paper's simulation rows give
  * `exponent = 1.51`, the JKR theory `5/6`. Only `vc` scales; `k` and `kappa` keep the law's
- * values. A reference diameter that is not finite and positive, a non-finite exponent or a
- * diameter that is not finite and positive is `DEPO_ERR_INVALID` and writes nothing.
+ * values. A reference diameter that is not finite and positive, a non-finite exponent, a
+ * diameter that is not finite and positive, or `capture_velocity` overlapping `diameter` is
+ * `DEPO_ERR_INVALID` and writes nothing.
  */
 int32_t depo_capture_velocities(const struct DepoWallLaw *law,
                                 double reference_diameter,
@@ -279,7 +323,8 @@ int32_t depo_capture_velocities(const struct DepoWallLaw *law,
  *
  * `face` holds the host's face ids, `0 <= face[i] < nfaces` for every captured particle (other
  * particles' ids are not read); `count` and `deposited_mass` have `nfaces` entries. A face id
- * out of range is `DEPO_ERR_INVALID` and changes nothing. One pass over the batch, outside the
+ * out of range, or `count` or `deposited_mass` overlapping another array, is
+ * `DEPO_ERR_INVALID` and changes nothing. One pass over the batch, outside the
  * law's kernel, so a host that wants no map pays nothing.
  */
 int32_t depo_accumulate_deposits(size_t n,

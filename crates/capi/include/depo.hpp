@@ -1,13 +1,13 @@
-// depo.hpp: a header-only C++17 layer over depo.h. Owners free what they hold (RAII), a
+// depo.hpp: a header-only C++11 layer over depo.h. Owners free what they hold (RAII), a
 // failing call throws depo::Error with the library's message, and batches stay views of the
 // caller's arrays.
 #ifndef DEPO_HPP
 #define DEPO_HPP
 
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "depo.h"
 
@@ -31,7 +31,8 @@ inline void check(std::int32_t status) {
 /// The library's version, "MAJOR.MINOR.PATCH".
 inline std::string version() { return depo_version(); }
 
-/// Caps the threads depo uses for large batches (0: one per core).
+/// Threads for large batches (0: one per core; 1: only the calling thread, for OpenMP and MPI
+/// hosts; at most DEPO_MAX_THREADS). Batches below DEPO_PARALLEL_MIN always run on the caller.
 inline void set_num_threads(std::size_t threads) { check(depo_set_num_threads(threads)); }
 
 /// An owned wall law; move-only.
@@ -45,11 +46,12 @@ class WallLaw {
         return law;
     }
     ~WallLaw() { depo_law_free(law_); }
-    WallLaw(WallLaw &&other) noexcept : law_(std::exchange(other.law_, nullptr)) {}
+    WallLaw(WallLaw &&other) noexcept : law_(other.law_) { other.law_ = nullptr; }
     WallLaw &operator=(WallLaw &&other) noexcept {
         if (this != &other) {
             depo_law_free(law_);
-            law_ = std::exchange(other.law_, nullptr);
+            law_ = other.law_;
+            other.law_ = nullptr;
         }
         return *this;
     }

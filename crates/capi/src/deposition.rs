@@ -1,6 +1,6 @@
 //! The host's deposition map: deposited count and mass per wall face.
 
-use super::{set_last_error, slice, slice_mut, Failure, DEPO_CAPTURED, DEPO_ERR_PANIC, DEPO_OK};
+use super::{check_disjoint, set_last_error, slice, slice_mut, span, Failure, DEPO_CAPTURED, DEPO_ERR_PANIC, DEPO_OK};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Adds the particles that a `depo_apply_*` call captured to a deposition map: for every `i`
@@ -9,7 +9,8 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 ///
 /// `face` holds the host's face ids, `0 <= face[i] < nfaces` for every captured particle (other
 /// particles' ids are not read); `count` and `deposited_mass` have `nfaces` entries. A face id
-/// out of range is `DEPO_ERR_INVALID` and changes nothing. One pass over the batch, outside the
+/// out of range, or `count` or `deposited_mass` overlapping another array, is
+/// `DEPO_ERR_INVALID` and changes nothing. One pass over the batch, outside the
 /// law's kernel, so a host that wants no map pays nothing.
 #[no_mangle]
 pub unsafe extern "C" fn depo_accumulate_deposits(
@@ -29,6 +30,11 @@ pub unsafe extern "C" fn depo_accumulate_deposits(
             (false, false) => Some((slice(mass, n, "mass")?, slice_mut(deposited_mass, nfaces, "deposited_mass")?)),
             _ => None,
         };
+        let mut arrays = vec![("outcome", span(outcome)), ("face", span(face)), ("count", span(count))];
+        if let Some((mass, deposited)) = &masses {
+            arrays.extend([("mass", span(mass)), ("deposited_mass", span(deposited))]);
+        }
+        check_disjoint(&arrays)?;
         let captured = || (0..n).filter(|&i| outcome[i] == DEPO_CAPTURED);
         if let Some(i) = captured().find(|&i| face[i] < 0 || face[i] as u64 >= nfaces as u64) {
             return Err(Failure::invalid(format!("face[{i}] = {} is outside 0..{nfaces}", face[i])));

@@ -24,14 +24,14 @@ use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, RwLock};
 
-use depo_wall_model::{Impacts, LawParams, Normals, Outcome, Real, SizeDependence, Tally, WallLaw};
+use depo_wall_model::{Impacts, LawParams, Normals, Outcome, Real, SizeDependence, Tally, UnknownPreset, WallLaw};
 
 /// Success.
 pub const DEPO_OK: i32 = 0;
 /// A pointer that must not be NULL was NULL.
 pub const DEPO_ERR_NULL: i32 = 1;
 /// A value out of its valid range: a law parameter, a batch normal, an unknown preset id,
-/// overlapping arrays, a face id out of range.
+/// overlapping or misaligned arrays, a face id out of range, a thread count.
 pub const DEPO_ERR_INVALID: i32 = 2;
 /// depo panicked; the message is in `depo_last_error()`. A bug: please report it.
 pub const DEPO_ERR_PANIC: i32 = 3;
@@ -42,8 +42,9 @@ pub const DEPO_REBOUND: u8 = 0;
 pub const DEPO_CAPTURED: u8 = 1;
 /// Not an impact (`v . n >= 0`): untouched.
 pub const DEPO_SKIPPED: u8 = 2;
-/// Non-finite velocity or spin, radius `<= 0`, or a per-particle normal not of unit length
-/// within 1e-4: untouched.
+/// Non-finite velocity or spin, a radius (with spin) that is not finite or below 1e-150 m in
+/// double precision, 1e-18 m in single (subnormal and zero radii included: the spin change
+/// goes as `1 / r`), or a per-particle normal not of unit length within 1e-4: untouched.
 pub const DEPO_INVALID: u8 = 3;
 
 /// The constants of the law (SI units; see docs/MODEL.md): restitution velocities `k1, k2` (m/s),
@@ -97,7 +98,11 @@ pub struct DepoTally {
 }
 
 /// A batch of wall contacts in double precision, as structure-of-arrays pointers into the
-/// host's memory. Arrays must not overlap.
+/// host's memory: each array holds `n` contiguous values, aligned as its element type (as
+/// malloc, new, std::vector and Fortran arrays give them; no wider alignment is needed, on x86
+/// or elsewhere). Strided or array-of-structures data is not supported: copy it into arrays
+/// first. Arrays must not overlap each other (`DEPO_ERR_INVALID`, as is a misaligned array)
+/// nor the tally (not checked).
 #[repr(C)]
 #[derive(Debug)]
 pub struct DepoImpactsF64 {
@@ -164,9 +169,16 @@ thread_local! {
     static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
 }
 
+/// Keeps `message` for `depo_last_error()`. Never panics: while the thread is being torn down
+/// (a host's pthread-key or thread-local destructor calling depo after depo's storage is gone)
+/// the message is dropped and the status alone reports the failure.
 fn set_last_error(message: &str) {
     let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
-    LAST_ERROR.with(|cell| *cell.borrow_mut() = text);
+    let _ = LAST_ERROR.try_with(|cell| {
+        if let Ok(mut slot) = cell.try_borrow_mut() {
+            *slot = text;
+        }
+    });
 }
 
 /// Runs an exported body: its `Result` becomes a status, a panic becomes `DEPO_ERR_PANIC`, and
@@ -201,33 +213,45 @@ unsafe fn required<'a, T>(ptr: *const T, what: &str) -> Result<&'a T, Failure> {
     ptr.as_ref().ok_or_else(|| Failure::null(what))
 }
 
-/// A slice from a pointer that must not be NULL when `n > 0`.
+/// Fails unless `ptr` (not NULL) is aligned as `T`, which a slice requires.
+fn check_aligned<T>(ptr: *const T, what: &str) -> Result<(), Failure> {
+    if ptr.is_aligned() {
+        Ok(())
+    } else {
+        Err(Failure::invalid(format!("{what} is not aligned to {} bytes", std::mem::align_of::<T>())))
+    }
+}
+
+/// A slice from a pointer that must not be NULL, and must be aligned, when `n > 0`.
 unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<&'a [T], Failure> {
     if n == 0 {
         Ok(&[])
     } else if ptr.is_null() {
         Err(Failure::null(what))
     } else {
+        check_aligned(ptr, what)?;
         Ok(std::slice::from_raw_parts(ptr, n))
     }
 }
 
-/// A mutable slice from a pointer that must not be NULL when `n > 0`.
+/// A mutable slice from a pointer that must not be NULL, and must be aligned, when `n > 0`.
 unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Result<&'a mut [T], Failure> {
     if n == 0 {
         Ok(&mut [])
     } else if ptr.is_null() {
         Err(Failure::null(what))
     } else {
+        check_aligned(ptr, what)?;
         Ok(std::slice::from_raw_parts_mut(ptr, n))
     }
 }
 
 /// The message of the last failure on the calling thread ("" if none), valid until the next
-/// failing depo call on this thread. Never NULL.
+/// failing depo call on this thread. Never NULL. Safe to call from a thread-exit destructor;
+/// the message of a failure during the thread's teardown may be "".
 #[no_mangle]
 pub extern "C" fn depo_last_error() -> *const c_char {
-    LAST_ERROR.with(|cell| cell.borrow().as_ptr())
+    LAST_ERROR.try_with(|cell| cell.try_borrow().map(|text| text.as_ptr()).ok()).ok().flatten().unwrap_or(c"".as_ptr())
 }
 
 /// The library version, "MAJOR.MINOR.PATCH", the same as `DEPO_VERSION` in the header it was
@@ -253,8 +277,12 @@ pub unsafe extern "C" fn depo_law_new(params: *const DepoLawParams, out: *mut *m
     })
 }
 
+/// The longest preset id quoted whole in an error message.
+const ID_QUOTED_MAX: usize = 64;
+
 /// Makes the law of a preset of the paper's Table 1 by id (e.g. "li1997-sio2"; friction 0).
-/// An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()`.
+/// An unknown id is `DEPO_ERR_INVALID`, with the known ids in `depo_last_error()` (and the id
+/// quoted up to 64 bytes).
 #[no_mangle]
 pub unsafe extern "C" fn depo_law_preset(id: *const c_char, out: *mut *mut DepoWallLaw) -> i32 {
     ffi_guard!({
@@ -265,7 +293,16 @@ pub unsafe extern "C" fn depo_law_preset(id: *const c_char, out: *mut *mut DepoW
             return Err(Failure::null("out"));
         }
         let id = CStr::from_ptr(id).to_str().map_err(|_| Failure::invalid("preset id is not UTF-8"))?;
-        let law = WallLaw::preset(id).map_err(|e| Failure::invalid(e.to_string()))?;
+        let law = WallLaw::preset(id).map_err(|e| {
+            if id.len() <= ID_QUOTED_MAX {
+                return Failure::invalid(e.to_string());
+            }
+            let mut end = ID_QUOTED_MAX;
+            while !id.is_char_boundary(end) {
+                end -= 1;
+            }
+            Failure::invalid(UnknownPreset(format!("{}... ({} bytes)", &id[..end], id.len())).to_string())
+        })?;
         *out = Box::into_raw(Box::new(DepoWallLaw { law }));
         Ok(())
     })
@@ -294,7 +331,8 @@ pub unsafe extern "C" fn depo_law_free(law: *mut DepoWallLaw) {
 
 /// The law's coefficients at `n` normal velocities `vn` (m/s; the sign is ignored): overall
 /// restitution `e`, material restitution `R`, adhesion `rho`, and 1 where captured else 0.
-/// Any output may be NULL. A non-finite `vn` is `DEPO_ERR_INVALID` and writes nothing.
+/// Any output may be NULL. A non-finite `vn`, or outputs that overlap `vn` or each other, is
+/// `DEPO_ERR_INVALID` and writes nothing.
 #[no_mangle]
 #[allow(non_snake_case)] // `R` is the paper's name, and the header's
 pub unsafe extern "C" fn depo_coefficients(
@@ -318,6 +356,12 @@ pub unsafe extern "C" fn depo_coefficients(
             (!rho.is_null()).then(|| slice_mut(rho, n, "rho")).transpose()?,
             (!captured.is_null()).then(|| slice_mut(captured, n, "captured")).transpose()?,
         );
+        let mut arrays = vec![("vn", span(vn))];
+        arrays.extend(outputs.0.as_deref().map(|s| ("e", span(s))));
+        arrays.extend(outputs.1.as_deref().map(|s| ("R", span(s))));
+        arrays.extend(outputs.2.as_deref().map(|s| ("rho", span(s))));
+        arrays.extend(outputs.3.as_deref().map(|s| ("captured", span(s))));
+        check_disjoint(&arrays)?;
         for (i, &v) in vn.iter().enumerate() {
             let c = law.coefficients(v);
             if let Some(out) = outputs.0.as_deref_mut() {
@@ -337,36 +381,81 @@ pub unsafe extern "C" fn depo_coefficients(
     })
 }
 
-/// The thread pool for depo's calls, if the host capped it; otherwise rayon's global pool.
-static POOL: RwLock<Option<Arc<rayon::ThreadPool>>> = RwLock::new(None);
+/// Batches of this many particles or more may be run on several threads (see
+/// `depo_set_num_threads`); smaller ones always run on the calling thread, in one piece.
+pub const DEPO_PARALLEL_MIN: usize = 65536;
+const _: () = assert!(DEPO_PARALLEL_MIN == depo_wall_model::kernel::PARALLEL_MIN);
 
-/// Caps the threads depo uses for large batches at `threads` (0: rayon's default, one per
-/// core or `RAYON_NUM_THREADS`). Host solvers that run their own OpenMP threads or one MPI rank
-/// per core call it with 1. Batches below 65536 particles always run on the calling thread.
+/// The largest thread cap `depo_set_num_threads` accepts.
+pub const DEPO_MAX_THREADS: usize = 1024;
+
+/// Where depo runs large batches, as set by `depo_set_num_threads`.
+enum Threads {
+    /// rayon's global pool.
+    Global,
+    /// The calling thread: no thread is started or woken.
+    Caller,
+    /// A pool of depo's own, of the capped size.
+    Pool(Arc<rayon::ThreadPool>),
+}
+
+static THREADS: RwLock<Threads> = RwLock::new(Threads::Global);
+
+/// Sets how many threads depo runs a large batch on (`DEPO_PARALLEL_MIN` particles or more).
+/// Smaller batches always run on the calling thread, in one piece, whatever this setting.
+///
+/// - `0` (the default): rayon's global pool, one thread per core or `RAYON_NUM_THREADS`. It
+///   starts at the first large batch and lives until the process exits.
+/// - `1`: the calling thread, for large batches too: depo never starts or wakes a thread. Host
+///   solvers that run their own OpenMP threads, or one MPI rank per core, call it with 1.
+/// - `2..=DEPO_MAX_THREADS`: a pool of that many threads of depo's own, started by this call;
+///   it ends when a later call replaces it, once the batches running on it have finished.
+///
+/// A value above `DEPO_MAX_THREADS` is `DEPO_ERR_INVALID` and changes nothing. The setting is
+/// process-wide: it holds for every thread and every law, and may be changed at any time
+/// (batches already running keep the threads they started with). Results are identical, bit
+/// for bit, for every setting.
 #[no_mangle]
 pub extern "C" fn depo_set_num_threads(threads: usize) -> i32 {
     ffi_guard!({
-        let pool = if threads == 0 {
-            None
-        } else {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .thread_name(|i| format!("depo-{i}"))
-                .build()
-                .map_err(|e| Failure::invalid(format!("cannot start {threads} threads: {e}")))?;
-            Some(Arc::new(pool))
+        let setting = match threads {
+            0 => Threads::Global,
+            1 => Threads::Caller,
+            2..=DEPO_MAX_THREADS => {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .thread_name(|i| format!("depo-{i}"))
+                    .build()
+                    .map_err(|e| Failure::invalid(format!("cannot start {threads} threads: {e}")))?;
+                Threads::Pool(Arc::new(pool))
+            }
+            _ => {
+                return Err(Failure::invalid(format!(
+                    "threads = {threads} is above the most depo accepts (DEPO_MAX_THREADS = {DEPO_MAX_THREADS})"
+                )))
+            }
         };
-        *POOL.write().unwrap_or_else(|e| e.into_inner()) = pool;
+        *THREADS.write().unwrap_or_else(|e| e.into_inner()) = setting;
         Ok(())
     })
 }
 
-/// Runs `f` on the capped pool if there is one.
-fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
-    let pool = POOL.read().unwrap_or_else(|e| e.into_inner()).clone();
+/// Runs the application of the law to a batch of `n` particles where `depo_set_num_threads`
+/// says: `apply(parallel)` is called on the calling thread unless `n` reaches
+/// `DEPO_PARALLEL_MIN` and a pool is allowed, and with `parallel` false it must keep every
+/// piece on the calling thread (`WallLaw::apply_on_calling_thread`). Small batches take no lock.
+fn run_batch<R: Send>(n: usize, apply: impl FnOnce(bool) -> R + Send) -> R {
+    if n < DEPO_PARALLEL_MIN {
+        return apply(false);
+    }
+    let pool = match &*THREADS.read().unwrap_or_else(|e| e.into_inner()) {
+        Threads::Global => None,
+        Threads::Caller => return apply(false),
+        Threads::Pool(pool) => Some(Arc::clone(pool)),
+    };
     match pool {
-        Some(pool) => pool.install(f),
-        None => f(),
+        Some(pool) => pool.install(|| apply(true)),
+        None => apply(true),
     }
 }
 
@@ -475,6 +564,12 @@ unsafe fn apply_raw<T: Real>(
     if let Some(vc) = vc {
         arrays.push(("capture_velocity", span(vc)));
     }
+    // The tally is written after the kernel has finished with the arrays: an overlap is the
+    // host's own data overwritten, documented rather than checked (checking it cost a small
+    // batch about 10 ns a call).
+    if !tally.is_null() {
+        check_aligned(tally.cast_const(), "tally")?;
+    }
     check_disjoint(&arrays)?;
 
     let normals = match per_particle {
@@ -488,11 +583,18 @@ unsafe fn apply_raw<T: Real>(
     if let Some(vc) = vc {
         batch = batch.with_capture_velocity(vc).map_err(|e| Failure::invalid(e.to_string()))?;
     }
-    if tally.is_null() {
-        on_pool(|| law.apply(batch, None));
-    } else {
+    let want_tally = !tally.is_null();
+    let sums = run_batch(n, |parallel| {
         let mut sums = Tally::default();
-        on_pool(|| law.apply(batch, Some(&mut sums)));
+        let want = want_tally.then_some(&mut sums);
+        if parallel {
+            law.apply(batch, want);
+        } else {
+            law.apply_on_calling_thread(batch, want);
+        }
+        sums
+    });
+    if want_tally {
         let t = &mut *tally;
         t.rebound += sums.rebound;
         t.captured += sums.captured;
@@ -507,7 +609,8 @@ unsafe fn apply_raw<T: Real>(
 }
 
 /// Applies `law` to every particle of `batch` in place, writing one outcome per particle, and
-/// adds the batch's counts and energy to `*tally` unless it is NULL. A batch normal not of unit
+/// adds the batch's counts and energy to `*tally` unless it is NULL (aligned as `DepoTally`,
+/// and not overlapping the batch's arrays, which is not checked). A batch normal not of unit
 /// length within 1e-4 is `DEPO_ERR_INVALID`; bad particles are flagged `DEPO_INVALID`. An empty
 /// batch (`n == 0`) is `DEPO_OK` and reads no other field.
 #[no_mangle]
@@ -559,8 +662,9 @@ pub unsafe extern "C" fn depo_apply_sized_f32(
 /// `vc[i] = vc_law (diameter[i] / reference_diameter)^(-exponent)`, with `vc_law` the law's
 /// capture velocity at `reference_diameter` (m). The paper's simulation rows give
 /// `exponent = 1.51`, the JKR theory `5/6`. Only `vc` scales; `k` and `kappa` keep the law's
-/// values. A reference diameter that is not finite and positive, a non-finite exponent or a
-/// diameter that is not finite and positive is `DEPO_ERR_INVALID` and writes nothing.
+/// values. A reference diameter that is not finite and positive, a non-finite exponent, a
+/// diameter that is not finite and positive, or `capture_velocity` overlapping `diameter` is
+/// `DEPO_ERR_INVALID` and writes nothing.
 #[no_mangle]
 pub unsafe extern "C" fn depo_capture_velocities(
     law: *const DepoWallLaw,
@@ -578,6 +682,7 @@ pub unsafe extern "C" fn depo_capture_velocities(
             return Err(Failure::invalid(format!("diameter[{i}] = {} is not finite and positive", diameter[i])));
         }
         let out = slice_mut(capture_velocity, n, "capture_velocity")?;
+        check_disjoint(&[("diameter", span(diameter)), ("capture_velocity", span(out))])?;
         let vc_law = law.params().vc;
         for (vc, &d) in out.iter_mut().zip(diameter) {
             *vc = size.capture_velocity(vc_law, d);

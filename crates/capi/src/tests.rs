@@ -99,6 +99,87 @@ fn presets_by_id_and_unknown_ids() {
 }
 
 #[test]
+fn a_huge_unknown_preset_id_is_quoted_short() {
+    let id = CString::new("x".repeat(1_000_000)).unwrap();
+    let mut law = null_mut();
+    assert_eq!(unsafe { depo_law_preset(id.as_ptr(), &mut law) }, DEPO_ERR_INVALID);
+    assert!(law.is_null());
+    let message = last_error();
+    assert!(message.len() < 1000, "{} bytes", message.len());
+    assert!(message.contains(&format!("'{}... (1000000 bytes)'", "x".repeat(64))), "{message}");
+    assert!(message.contains("li1997-sio2"), "{message}");
+    // Multi-byte characters are cut on a character boundary.
+    let id = CString::new("é".repeat(100)).unwrap();
+    assert_eq!(unsafe { depo_law_preset(id.as_ptr(), &mut law) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains(&format!("'{}... (200 bytes)'", "é".repeat(32))), "{}", last_error());
+}
+
+#[test]
+fn misaligned_arrays_are_refused_and_change_nothing() {
+    let law = new_law(li1997());
+    let rows = [([0.1, 0.0, -1.0], [0.0; 3], 1e-5, [0.0, 0.0, 1.0]); 4];
+    let mut a = Arrays::new(&rows);
+    // Four doubles one byte into a buffer: a valid address, but not aligned to 8 bytes.
+    let mut words = [0u64; 5];
+    let misaligned = unsafe { words.as_mut_ptr().cast::<u8>().add(1) }.cast::<f64>();
+    let mut b = a.batch(false, false);
+    b.vz = misaligned;
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b, null_mut()) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("vz is not aligned to 8 bytes"), "{}", last_error());
+    assert_eq!(a.outcome, [255; 4]);
+    let mut tally_words = [0u64; std::mem::size_of::<DepoTally>() / 8 + 1];
+    let tally = unsafe { tally_words.as_mut_ptr().cast::<u8>().add(4) }.cast::<DepoTally>();
+    assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(false, false), tally) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("tally is not aligned"), "{}", last_error());
+    assert_eq!(a.outcome, [255; 4]);
+    let vn = [1.0; 4];
+    assert_eq!(
+        unsafe { depo_coefficients(law, 4, vn.as_ptr(), misaligned, null_mut(), null_mut(), null_mut()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(words, [0; 5]);
+    assert_eq!(tally_words, [0; std::mem::size_of::<DepoTally>() / 8 + 1]);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn outputs_that_overlap_inputs_are_refused_and_change_nothing() {
+    let law = new_law(li1997());
+    // Coefficients: an output on vn, or two outputs on one array.
+    let mut vn = [1.0, 2.0, 3.0];
+    let (mut e, mut r) = ([9.0; 3], [9.0; 3]);
+    let p = vn.as_mut_ptr();
+    assert_eq!(unsafe { depo_coefficients(law, 3, p, p, null_mut(), null_mut(), null_mut()) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("vn and e overlap"), "{}", last_error());
+    assert_eq!(vn, [1.0, 2.0, 3.0]);
+    let e_ptr = e.as_mut_ptr();
+    assert_eq!(
+        unsafe { depo_coefficients(law, 3, vn.as_ptr(), e_ptr, e_ptr, null_mut(), null_mut()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(e, [9.0; 3]);
+    assert_eq!(
+        unsafe { depo_coefficients(law, 3, vn.as_ptr(), e.as_mut_ptr(), r.as_mut_ptr(), null_mut(), null_mut()) },
+        DEPO_OK
+    );
+    // Capture velocities written over the diameters.
+    let mut d = [35e-6, 70e-6];
+    let dp = d.as_mut_ptr();
+    assert_eq!(unsafe { depo_capture_velocities(law, 70e-6, 1.51, 2, dp, dp) }, DEPO_ERR_INVALID);
+    assert_eq!(d, [35e-6, 70e-6]);
+    // Deposition counts over the face ids.
+    let outcome = [DEPO_CAPTURED; 2];
+    let mut face = [0i64, 1];
+    let f = face.as_mut_ptr();
+    assert_eq!(
+        unsafe { depo_accumulate_deposits(2, outcome.as_ptr(), f, null(), 2, f.cast::<u64>(), null_mut()) },
+        DEPO_ERR_INVALID
+    );
+    assert_eq!(face, [0, 1]);
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
 fn version_matches_the_crate() {
     let v = unsafe { CStr::from_ptr(depo_version()) }.to_str().unwrap();
     assert_eq!(v, env!("CARGO_PKG_VERSION"));
@@ -239,6 +320,44 @@ fn bad_particles_are_flagged_and_the_tally_adds_up() {
 }
 
 #[test]
+fn tiny_radii_with_spin_are_invalid_not_infinite_spin() {
+    let law = new_law(li1997());
+    let row = |radius: f64| ([0.5, 0.0, -1.0], [0.0, 10.0, 0.0], radius, [0.0, 0.0, 1.0]);
+    let rows = [row(1e-310), row(f64::MIN_POSITIVE), row(1e-200), row(1e-150), row(1e-9)];
+    let mut a = Arrays::new(&rows);
+    assert_eq!(unsafe { depo_apply_f64(law, &mut a.batch(true, false), null_mut()) }, DEPO_OK);
+    assert_eq!(a.outcome, [DEPO_INVALID, DEPO_INVALID, DEPO_INVALID, DEPO_REBOUND, DEPO_REBOUND]);
+    for k in 0..3 {
+        assert!(a.w[k].iter().chain(&a.v[k]).all(|x| x.is_finite()), "{:?} {:?}", a.w, a.v);
+    }
+    assert_eq!(a.w[1][..3], [10.0; 3], "invalid particles are untouched");
+    // Single precision: the floor is 1e-18 m.
+    let (mut vx, mut vy, mut vz) = ([0.5f32; 3], [0.0f32; 3], [-1.0f32; 3]);
+    let (mut wx, mut wy, mut wz) = ([0.0f32; 3], [10.0f32; 3], [0.0f32; 3]);
+    let radius = [1e-40f32, 1e-20, 1e-9];
+    let mut out = [9u8; 3];
+    let mut b = DepoImpactsF32 {
+        n: 3,
+        vx: vx.as_mut_ptr(),
+        vy: vy.as_mut_ptr(),
+        vz: vz.as_mut_ptr(),
+        wx: wx.as_mut_ptr(),
+        wy: wy.as_mut_ptr(),
+        wz: wz.as_mut_ptr(),
+        radius: radius.as_ptr(),
+        nx: null(),
+        ny: null(),
+        nz: null(),
+        normal: [0.0, 0.0, 1.0],
+        outcome: out.as_mut_ptr(),
+    };
+    assert_eq!(unsafe { depo_apply_f32(law, &mut b, null_mut()) }, DEPO_OK);
+    assert_eq!(out, [DEPO_INVALID, DEPO_INVALID, DEPO_REBOUND]);
+    assert!(wx.iter().chain(&wy).chain(&wz).all(|x| x.is_finite()));
+    unsafe { depo_law_free(law) };
+}
+
+#[test]
 fn f32_and_f64_entry_points_agree() {
     let law = new_law(li1997());
     let n = 1000;
@@ -297,8 +416,12 @@ fn f32_and_f64_entry_points_agree() {
     unsafe { depo_law_free(law) };
 }
 
+/// Held by the tests that change the process-wide thread setting.
+static THREAD_SETTING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 #[test]
 fn thread_cap_gives_the_same_results() {
+    let _setting = THREAD_SETTING.lock().unwrap_or_else(|e| e.into_inner());
     let law = new_law(DepoLawParams { p: 1.3, q: 0.7, ..li1997() });
     let rows: Vec<_> = (0..150_000)
         .map(|i| {
@@ -325,6 +448,38 @@ fn thread_cap_gives_the_same_results() {
     assert!(one.0.iter().zip(&two.0).all(|(a, b)| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())));
     assert_eq!(one.1, two.1);
     unsafe { depo_law_free(law) };
+}
+
+#[test]
+fn small_batches_run_on_the_calling_thread_whatever_the_cap_and_1_never_leaves_it() {
+    let _setting = THREAD_SETTING.lock().unwrap_or_else(|e| e.into_inner());
+    let here = std::thread::current().id();
+    let whereabouts = |n: usize| run_batch(n, |parallel| (std::thread::current().id(), parallel));
+    for cap in [0, 1, 2, 3] {
+        assert_eq!(depo_set_num_threads(cap), DEPO_OK);
+        for n in [1, 10, 2000, DEPO_PARALLEL_MIN - 1] {
+            assert_eq!(whereabouts(n), (here, false), "cap {cap}, {n} particles");
+        }
+    }
+    // 1: large batches stay on the calling thread too, in pieces run one after the other.
+    assert_eq!(depo_set_num_threads(1), DEPO_OK);
+    assert_eq!(whereabouts(DEPO_PARALLEL_MIN), (here, false));
+    assert_eq!(whereabouts(10 * DEPO_PARALLEL_MIN), (here, false));
+    // A cap of 2 or more: large batches go to depo's own pool.
+    assert_eq!(depo_set_num_threads(2), DEPO_OK);
+    let name = run_batch(DEPO_PARALLEL_MIN, |parallel| (std::thread::current().name().map(String::from), parallel));
+    assert_eq!(name, (Some("depo-0".to_string()), true));
+    // No cap: rayon's global pool, parallel.
+    assert_eq!(depo_set_num_threads(0), DEPO_OK);
+    assert!(run_batch(DEPO_PARALLEL_MIN, |parallel| parallel));
+    // Absurd caps are refused and change nothing.
+    assert_eq!(depo_set_num_threads(1), DEPO_OK);
+    for absurd in [DEPO_MAX_THREADS + 1, usize::MAX] {
+        assert_eq!(depo_set_num_threads(absurd), DEPO_ERR_INVALID);
+        assert!(last_error().contains("DEPO_MAX_THREADS"), "{}", last_error());
+        assert_eq!(whereabouts(10 * DEPO_PARALLEL_MIN), (here, false), "the setting 1 holds");
+    }
+    assert_eq!(depo_set_num_threads(0), DEPO_OK);
 }
 
 #[test]
@@ -447,6 +602,57 @@ fn sized_apply_uses_each_particle_s_capture_velocity() {
     assert_eq!(unsafe { depo_apply_sized_f32(law, &mut b32, vc32.as_ptr(), null_mut()) }, DEPO_OK);
     assert_eq!(out, [DEPO_CAPTURED, DEPO_REBOUND]);
     unsafe { depo_law_free(law) };
+}
+
+/// A host whose thread-exit destructor (a pthread key's, a C++ or Rust thread-local's) calls
+/// depo after depo's own thread-local storage is gone: the call fails with its status, and
+/// neither it nor `depo_last_error` may abort the process. Run in a child process, since the
+/// failure was an abort.
+#[test]
+fn failing_calls_during_thread_teardown_return_their_status() {
+    use std::sync::atomic::{AtomicI32, AtomicUsize, Ordering};
+    const CHILD: &str = "DEPO_TEST_TEARDOWN_CHILD";
+    static STATUS: AtomicI32 = AtomicI32::new(-1);
+    static MESSAGE_LEN: AtomicUsize = AtomicUsize::new(usize::MAX);
+
+    if std::env::var_os(CHILD).is_some() {
+        struct CallsDepoOnExit;
+        impl Drop for CallsDepoOnExit {
+            fn drop(&mut self) {
+                let mut law = null_mut();
+                let bad = DepoLawParams { kappa2: -1.0, ..li1997() };
+                STATUS.store(unsafe { depo_law_new(&bad, &mut law) }, Ordering::SeqCst);
+                MESSAGE_LEN.store(unsafe { CStr::from_ptr(depo_last_error()) }.to_bytes().len(), Ordering::SeqCst);
+            }
+        }
+        thread_local! {
+            static ON_EXIT: CallsDepoOnExit = const { CallsDepoOnExit };
+        }
+        std::thread::spawn(|| {
+            ON_EXIT.with(|_| ()); // set up first, so torn down after depo's storage
+            let mut law = null_mut();
+            let bad = DepoLawParams { vc: f64::NAN, ..li1997() };
+            assert_eq!(unsafe { depo_law_new(&bad, &mut law) }, DEPO_ERR_INVALID);
+        })
+        .join()
+        .unwrap();
+        assert_eq!(STATUS.load(Ordering::SeqCst), DEPO_ERR_INVALID);
+        assert_ne!(MESSAGE_LEN.load(Ordering::SeqCst), usize::MAX, "depo_last_error returned");
+        println!("teardown calls returned");
+        return;
+    }
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args(["--exact", "tests::failing_calls_during_thread_teardown_return_their_status", "--nocapture"])
+        .env(CHILD, "1")
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && stdout.contains("teardown calls returned"),
+        "{:?}\n{stdout}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! The C, C++, Fortran and MPI examples, compiled against the real libdepo and run; the C one
 //! also under valgrind, statically linked, and after `install.sh` through pkg-config and
-//! through CMake's `find_package(depo)`; the headers compiled alone with every warning an error.
+//! through CMake's `find_package(depo)`; the headers compiled alone with every warning an error;
+//! the Fortran module's argument checks.
 //!
 //! A missing compiler or tool fails the test, with the package to install. Setting its
 //! `DEPO_SKIP_*` variable to 1 (`DEPO_SKIP_FORTRAN`, `DEPO_SKIP_MPI`, `DEPO_SKIP_CMAKE`,
@@ -156,11 +157,11 @@ fn headers_compile_alone() {
     )
     .arg("-o")
     .arg(dir.join("h.o")));
-    run(c_flags(
-        Command::new("c++").args(["-std=c++17", &include("crates/capi/include"), "-c"]).arg(dir.join("hpp.cpp")),
-    )
-    .arg("-o")
-    .arg(dir.join("hpp.o")));
+    for std in ["-std=c++11", "-std=c++17"] {
+        run(c_flags(Command::new("c++").args([std, &include("crates/capi/include"), "-c"]).arg(dir.join("hpp.cpp")))
+            .arg("-o")
+            .arg(dir.join("hpp.o")));
+    }
 }
 
 #[test]
@@ -362,6 +363,33 @@ fn fortran_example_runs() {
     check_report(&stdout);
     assert!(stdout.contains("rejected: invalid wall-law parameter mu = -1"), "{stdout}");
     assert!(stdout.contains("e(1 m/s) =  0.73199"), "{stdout}");
+}
+
+/// The Fortran module's argument checks (`tests/fortran/checks.f90`): wrong sizes, partial
+/// sets of optional arguments and a missing normal return their status and change nothing;
+/// under valgrind too, so that no array is read or written past its end.
+#[test]
+fn fortran_module_checks_every_argument() {
+    if !have("gfortran") {
+        return;
+    }
+    let dir = out_dir("fortran-checks");
+    let exe = dir.join("checks");
+    run(link_depo(
+        Command::new("gfortran")
+            // The checks compare reals exactly on purpose: a failed call changes nothing.
+            .args(["-std=f2018", "-Wall", "-Wextra", "-Werror", "-Wno-compare-reals", "-g", "-J"])
+            .arg(&dir)
+            .arg(root().join("crates/capi/fortran/depo.f90"))
+            .arg(root().join("crates/capi/tests/fortran/checks.f90"))
+            .arg("-o")
+            .arg(&exe),
+    ));
+    let out = run(&mut Command::new(&exe));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("fortran checks passed"));
+    if have("valgrind") {
+        run(Command::new("valgrind").args(["--error-exitcode=99", "-q"]).arg(&exe));
+    }
 }
 
 #[test]

@@ -25,9 +25,10 @@ impl Outcome {
     pub const CAPTURED: Self = Self(1);
     /// Not an impact (`vn >= 0`): untouched.
     pub const SKIPPED: Self = Self(2);
-    /// Non-finite velocity, spin or per-particle capture velocity, radius `<= 0` or not
-    /// finite, or a per-particle normal that is not finite or not of unit length within 1e-4:
-    /// untouched.
+    /// Non-finite velocity, spin or per-particle capture velocity, a radius that is not finite
+    /// or below `1 / Real::BIG` (1e-150 m in `f64`, 1e-18 m in `f32`: the spin change goes
+    /// as `1 / r`), or a per-particle normal that is not finite or not of unit length within
+    /// 1e-4: untouched.
     pub const INVALID: Self = Self(3);
 
     /// A lower-case name for reports.

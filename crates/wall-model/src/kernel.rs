@@ -65,22 +65,25 @@ pub(crate) struct Setup<T> {
 }
 
 /// Applies the law to a whole batch, returning its tally (all zero unless `want_tally`).
-pub(crate) fn apply<T: Real>(setup: &Setup<T>, batch: Impacts<'_, T>, want_tally: bool) -> Tally {
+/// With `parallel` false a large batch is cut into the same pieces, run one after the other on
+/// the calling thread and summed in the same order: the same results, and no thread is woken.
+pub(crate) fn apply<T: Real>(setup: &Setup<T>, batch: Impacts<'_, T>, want_tally: bool, parallel: bool) -> Tally {
     if batch.len() < PARALLEL_MIN {
         run_piece(setup, batch, want_tally)
     } else {
-        split(setup, batch, want_tally)
+        split(setup, batch, want_tally, parallel)
     }
 }
 
-fn split<T: Real>(setup: &Setup<T>, batch: Impacts<'_, T>, want_tally: bool) -> Tally {
+fn split<T: Real>(setup: &Setup<T>, batch: Impacts<'_, T>, want_tally: bool, parallel: bool) -> Tally {
     if batch.len() <= LEAF {
         return run_piece(setup, batch, want_tally);
     }
     // Cut on a 64-particle boundary so that pieces start on cache-line boundaries.
     let mid = (batch.len() / 2).next_multiple_of(64);
     let (first, second) = batch.split_at(mid);
-    let (mut tally, rest) = rayon::join(|| split(setup, first, want_tally), || split(setup, second, want_tally));
+    let halves = (|| split(setup, first, want_tally, parallel), || split(setup, second, want_tally, parallel));
+    let (mut tally, rest) = if parallel { rayon::join(halves.0, halves.1) } else { (halves.0(), halves.1()) };
     tally += rest;
     tally
 }
@@ -302,8 +305,10 @@ fn sweep<
             let mut valid = all_finite(v) & unit_normal;
             if SPIN {
                 // The radius joins the finiteness sum: `r < inf` beside `r > 0` became an
-                // integer range check (8 more instructions per four impacts, AVX2, f64).
-                valid &= all_finite([w[0], w[1], w[2], r]) & (r > T::ZERO);
+                // integer range check (8 more instructions per four impacts, AVX2, f64). The
+                // floor is `1 / BIG` rather than 0: the spin change goes as `1 / r`, which for a
+                // subnormal radius overflowed to an infinite spin on a "rebound".
+                valid &= all_finite([w[0], w[1], w[2], r]) & (r >= T::ONE / T::BIG);
             }
             if PER_VC {
                 valid &= vcs[i].is_finite();

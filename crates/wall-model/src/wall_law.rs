@@ -159,6 +159,17 @@ impl WallLaw {
     /// with its own OpenMP or MPI layout), call this inside `pool.install(..)` of a pool with
     /// the threads you allow. Batches below 65536 particles run on the calling thread.
     pub fn apply<T: Real>(&self, batch: Impacts<'_, T>, tally: Option<&mut Tally>) {
+        self.apply_on(batch, tally, true);
+    }
+
+    /// [`WallLaw::apply`] entirely on the calling thread, whatever the batch size: for a host
+    /// that runs its own threads (OpenMP, one MPI rank per core) and wants depo never to start
+    /// or wake one. Results and tally are those of [`WallLaw::apply`], bit for bit.
+    pub fn apply_on_calling_thread<T: Real>(&self, batch: Impacts<'_, T>, tally: Option<&mut Tally>) {
+        self.apply_on(batch, tally, false);
+    }
+
+    fn apply_on<T: Real>(&self, batch: Impacts<'_, T>, tally: Option<&mut Tally>, parallel: bool) {
         let setup = Setup {
             constants: LawConstants::<T>::new(&self.params),
             exponents: self.exponents(),
@@ -166,7 +177,7 @@ impl WallLaw {
             capture: self.capture,
         };
         let want_tally = tally.is_some();
-        let result = kernel::apply(&setup, batch, want_tally);
+        let result = kernel::apply(&setup, batch, want_tally, parallel);
         if let Some(tally) = tally {
             *tally += result;
         }

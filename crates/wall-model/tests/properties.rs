@@ -182,29 +182,37 @@ proptest! {
 }
 
 #[test]
-fn results_are_identical_for_one_and_two_threads() {
+fn results_are_identical_for_one_and_two_threads_and_on_the_calling_thread() {
     let law = WallLaw::new(LawParams::symmetric(12.5, 0.065, 0.074, 1.3, 0.7).with_friction(0.3)).unwrap();
     let n = 300_000; // above the parallel threshold: cut into many pieces
-    let run = |threads: usize| {
+                     // `None`: `apply_on_calling_thread`, outside any pool.
+    let run = |threads: Option<usize>| {
         let mut vx: Vec<f64> = (0..n).map(|i| ((i * 7919) % 1013) as f64 / 1013.0 - 0.5).collect();
         let mut vy: Vec<f64> = (0..n).map(|i| ((i * 104_729) % 997) as f64 / 997.0 - 0.5).collect();
         let mut vz: Vec<f64> = (0..n).map(|i| -0.01 - ((i * 31) % 1009) as f64 / 200.0).collect();
         let mut outcome = vec![Outcome::default(); n];
         let mut tally = Tally::default();
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| {
+        let mut apply = || {
             let batch =
                 Impacts::new([&mut vx, &mut vy, &mut vz], Normals::Uniform([0.0, 0.0, 1.0]), &mut outcome).unwrap();
-            law.apply(batch, Some(&mut tally));
-        });
+            match threads {
+                Some(_) => law.apply(batch, Some(&mut tally)),
+                None => law.apply_on_calling_thread(batch, Some(&mut tally)),
+            }
+        };
+        match threads {
+            Some(threads) => rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(apply),
+            None => apply(),
+        }
         (vx, vy, vz, outcome, tally)
     };
-    let one = run(1);
-    let two = run(2);
-    assert!(one.0.iter().zip(&two.0).all(|(a, b)| a.to_bits() == b.to_bits()));
-    assert!(one.2.iter().zip(&two.2).all(|(a, b)| a.to_bits() == b.to_bits()));
-    assert_eq!(one.3, two.3);
-    assert_eq!(one.4, two.4, "tallies, energies included, must match bit for bit");
+    let one = run(Some(1));
+    for other in [run(Some(2)), run(None)] {
+        assert!(one.0.iter().zip(&other.0).all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert!(one.2.iter().zip(&other.2).all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert_eq!(one.3, other.3);
+        assert_eq!(one.4, other.4, "tallies, energies included, must match bit for bit");
+    }
     assert_eq!(one.4.particles(), n as u64);
     assert!(one.4.rebound > 0 && one.4.captured > 0);
 }
