@@ -19,6 +19,7 @@ module depo
   public :: DEPO_OK, DEPO_ERR_NULL, DEPO_ERR_INVALID, DEPO_ERR_PANIC
   public :: DEPO_REBOUND, DEPO_CAPTURED, DEPO_SKIPPED, DEPO_INVALID
   public :: depo_law_create, depo_law_from_preset, depo_law_destroy, depo_law_get_params
+  public :: depo_law_keeping_on_wall, DEPO_CAPTURE_DEPOSIT, DEPO_CAPTURE_KEEP_ON_WALL
   public :: depo_apply, depo_coefficients, depo_capture_velocities, depo_accumulate_deposits
   public :: depo_set_num_threads
   public :: depo_last_error_message, depo_version_string
@@ -28,6 +29,8 @@ module depo
   !> Outcome per particle (uint8_t in C, integer(c_int8_t) here).
   integer(c_int8_t), parameter :: DEPO_REBOUND = 0_c_int8_t, DEPO_CAPTURED = 1_c_int8_t, &
                                   DEPO_SKIPPED = 2_c_int8_t, DEPO_INVALID = 3_c_int8_t
+  !> Capture modes (depo_law_keeping_on_wall).
+  integer, parameter :: DEPO_CAPTURE_DEPOSIT = 0, DEPO_CAPTURE_KEEP_ON_WALL = 1
 
   !> The constants of the law, SI units (DepoLawParams).
   type, bind(C) :: depo_law_params
@@ -92,6 +95,15 @@ module depo
       type(c_ptr), intent(out) :: out
       integer(c_int32_t) :: status
     end function c_depo_law_preset
+
+    function c_depo_law_with_capture_mode(law, mode, out) bind(C, name="depo_law_with_capture_mode") &
+        result(status)
+      import :: c_ptr, c_int32_t
+      type(c_ptr), value :: law
+      integer(c_int32_t), value :: mode
+      type(c_ptr), intent(out) :: out
+      integer(c_int32_t) :: status
+    end function c_depo_law_with_capture_mode
 
     function c_depo_law_params(law, params) bind(C, name="depo_law_params") result(status)
       import :: depo_law_params, c_ptr, c_int32_t
@@ -308,6 +320,17 @@ contains
     integer, intent(out), optional :: ierr
     call handle(c_depo_law_preset(trim(id)//c_null_char, law%ptr), ierr)
   end subroutine depo_law_from_preset
+
+  !> A copy of `law` that treats captured particles by `mode`: DEPO_CAPTURE_DEPOSIT (velocity and
+  !> spin zero, every law's default) or DEPO_CAPTURE_KEEP_ON_WALL (only the normal velocity
+  !> zeroed; the particle stays on the wall and may migrate along it). Free both laws.
+  subroutine depo_law_keeping_on_wall(law, mode, kept, ierr)
+    type(depo_law_t), intent(in) :: law
+    integer, intent(in) :: mode
+    type(depo_law_t), intent(out) :: kept
+    integer, intent(out), optional :: ierr
+    call handle(c_depo_law_with_capture_mode(law%ptr, int(mode, c_int32_t), kept%ptr), ierr)
+  end subroutine depo_law_keeping_on_wall
 
   !> Reads the constants of a law back (depo_law_params in C; the name depo_law_params is the
   !> type's here).

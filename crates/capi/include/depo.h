@@ -53,7 +53,8 @@
 #define DEPO_REBOUND 0
 
 /**
- * The particle hit the wall and was captured: velocity (and spin) set to zero.
+ * The particle hit the wall and was captured: velocity (and spin) set to zero, or with
+ * `DEPO_CAPTURE_KEEP_ON_WALL` only the velocity's normal component.
  */
 #define DEPO_CAPTURED 1
 
@@ -68,6 +69,20 @@
  * goes as `1 / r`), or a per-particle normal not of unit length within 1e-4: untouched.
  */
 #define DEPO_INVALID 3
+
+/**
+ * Capture mode: a captured particle is deposited where it hit, velocity and spin zero. The
+ * default of every law.
+ */
+#define DEPO_CAPTURE_DEPOSIT 0
+
+/**
+ * Capture mode: a captured particle stays on the wall with zero normal velocity, its
+ * tangential velocity and spin after the impact's friction impulse left as they are (the
+ * paper's remark that an obliquely captured particle may migrate along the surface); the host
+ * decides what to do with it (its outcome is `DEPO_CAPTURED`).
+ */
+#define DEPO_CAPTURE_KEEP_ON_WALL 1
 
 /**
  * Batches of this many particles or more may be run on several threads (see
@@ -230,7 +245,21 @@ int32_t depo_law_preset(const char *id, struct DepoWallLaw **out);
 int32_t depo_law_params(const struct DepoWallLaw *law, struct DepoLawParams *params);
 
 /**
- * Frees a law made by `depo_law_new` or `depo_law_preset`. NULL is fine.
+ * Makes a copy of `law` that treats captured particles by `mode` (`DEPO_CAPTURE_DEPOSIT` or
+ * `DEPO_CAPTURE_KEEP_ON_WALL`), freed by `depo_law_free`. Another mode is `DEPO_ERR_INVALID`;
+ * on any failure `*out` is unchanged.
+ */
+int32_t depo_law_with_capture_mode(const struct DepoWallLaw *law, int32_t mode, struct DepoWallLaw **out);
+
+/**
+ * Writes the capture mode of `law` (`DEPO_CAPTURE_DEPOSIT` or `DEPO_CAPTURE_KEEP_ON_WALL`) to
+ * `*mode`.
+ */
+int32_t depo_law_capture_mode(const struct DepoWallLaw *law, int32_t *mode);
+
+/**
+ * Frees a law made by `depo_law_new`, `depo_law_preset` or `depo_law_with_capture_mode`. NULL
+ * is fine.
  */
 void depo_law_free(struct DepoWallLaw *law);
 

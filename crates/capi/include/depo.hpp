@@ -58,6 +58,13 @@ class WallLaw {
     WallLaw(const WallLaw &) = delete;
     WallLaw &operator=(const WallLaw &) = delete;
 
+    /// A copy of this law that treats captured particles by `mode`: DEPO_CAPTURE_DEPOSIT or
+    /// DEPO_CAPTURE_KEEP_ON_WALL (only the normal velocity zeroed; outcome DEPO_CAPTURED).
+    WallLaw with_capture_mode(int32_t mode) const {
+        WallLaw law;
+        check(depo_law_with_capture_mode(law_, mode, &law.law_));
+        return law;
+    }
     DepoLawParams params() const {
         DepoLawParams p{};
         check(depo_law_params(law_, &p));

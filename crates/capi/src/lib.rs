@@ -24,7 +24,9 @@ use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, RwLock};
 
-use depo_wall_model::{Impacts, LawParams, Normals, Outcome, Real, SizeDependence, Tally, UnknownPreset, WallLaw};
+use depo_wall_model::{
+    CaptureMode, Impacts, LawParams, Normals, Outcome, Real, SizeDependence, Tally, UnknownPreset, WallLaw,
+};
 
 /// Success.
 pub const DEPO_OK: i32 = 0;
@@ -38,7 +40,8 @@ pub const DEPO_ERR_PANIC: i32 = 3;
 
 /// The particle hit the wall and rebounded: velocity (and spin) updated.
 pub const DEPO_REBOUND: u8 = 0;
-/// The particle hit the wall and was captured: velocity (and spin) set to zero.
+/// The particle hit the wall and was captured: velocity (and spin) set to zero, or with
+/// `DEPO_CAPTURE_KEEP_ON_WALL` only the velocity's normal component.
 pub const DEPO_CAPTURED: u8 = 1;
 /// Not an impact (`v . n >= 0`): untouched.
 pub const DEPO_SKIPPED: u8 = 2;
@@ -321,7 +324,62 @@ pub unsafe extern "C" fn depo_law_params(law: *const DepoWallLaw, params: *mut D
     })
 }
 
-/// Frees a law made by `depo_law_new` or `depo_law_preset`. NULL is fine.
+/// Capture mode: a captured particle is deposited where it hit, velocity and spin zero. The
+/// default of every law.
+pub const DEPO_CAPTURE_DEPOSIT: i32 = 0;
+/// Capture mode: a captured particle stays on the wall with zero normal velocity, its
+/// tangential velocity and spin after the impact's friction impulse left as they are (the
+/// paper's remark that an obliquely captured particle may migrate along the surface); the host
+/// decides what to do with it (its outcome is `DEPO_CAPTURED`).
+pub const DEPO_CAPTURE_KEEP_ON_WALL: i32 = 1;
+
+/// Makes a copy of `law` that treats captured particles by `mode` (`DEPO_CAPTURE_DEPOSIT` or
+/// `DEPO_CAPTURE_KEEP_ON_WALL`), freed by `depo_law_free`. Another mode is `DEPO_ERR_INVALID`;
+/// on any failure `*out` is unchanged.
+#[no_mangle]
+pub unsafe extern "C" fn depo_law_with_capture_mode(
+    law: *const DepoWallLaw,
+    mode: i32,
+    out: *mut *mut DepoWallLaw,
+) -> i32 {
+    ffi_guard!({
+        let law = required(law, "law")?;
+        if out.is_null() {
+            return Err(Failure::null("out"));
+        }
+        let capture = match mode {
+            DEPO_CAPTURE_DEPOSIT => CaptureMode::Deposit,
+            DEPO_CAPTURE_KEEP_ON_WALL => CaptureMode::KeepOnWall,
+            other => {
+                return Err(Failure::invalid(format!(
+                    "capture mode {other}: expected DEPO_CAPTURE_DEPOSIT (0) or DEPO_CAPTURE_KEEP_ON_WALL (1)"
+                )))
+            }
+        };
+        *out = Box::into_raw(Box::new(DepoWallLaw { law: law.law.with_capture_mode(capture) }));
+        Ok(())
+    })
+}
+
+/// Writes the capture mode of `law` (`DEPO_CAPTURE_DEPOSIT` or `DEPO_CAPTURE_KEEP_ON_WALL`) to
+/// `*mode`.
+#[no_mangle]
+pub unsafe extern "C" fn depo_law_capture_mode(law: *const DepoWallLaw, mode: *mut i32) -> i32 {
+    ffi_guard!({
+        let law = required(law, "law")?;
+        if mode.is_null() {
+            return Err(Failure::null("mode"));
+        }
+        *mode = match law.law.capture_mode() {
+            CaptureMode::Deposit => DEPO_CAPTURE_DEPOSIT,
+            CaptureMode::KeepOnWall => DEPO_CAPTURE_KEEP_ON_WALL,
+        };
+        Ok(())
+    })
+}
+
+/// Frees a law made by `depo_law_new`, `depo_law_preset` or `depo_law_with_capture_mode`. NULL
+/// is fine.
 #[no_mangle]
 pub unsafe extern "C" fn depo_law_free(law: *mut DepoWallLaw) {
     if !law.is_null() {

@@ -706,3 +706,39 @@ proptest! {
         unsafe { depo_law_free(law) };
     }
 }
+
+/// The keep-on-wall capture mode through the C ABI: a copy of the law that leaves a captured
+/// particle's tangential velocity (as the Rust law does, bit for bit), read back; an unknown
+/// mode is refused and makes nothing.
+#[test]
+fn keep_on_wall_capture_mode_through_the_abi() {
+    let law = new_law(li1997());
+    let mut kept = null_mut();
+    assert_eq!(unsafe { depo_law_with_capture_mode(law, DEPO_CAPTURE_KEEP_ON_WALL, &mut kept) }, DEPO_OK);
+    let mut mode = -1;
+    assert_eq!(unsafe { depo_law_capture_mode(kept, &mut mode) }, DEPO_OK);
+    assert_eq!(mode, DEPO_CAPTURE_KEEP_ON_WALL);
+    assert_eq!(unsafe { depo_law_capture_mode(law, &mut mode) }, DEPO_OK);
+    assert_eq!(mode, DEPO_CAPTURE_DEPOSIT);
+    // A slow oblique impact, captured (|vn| = 0.03 m/s < vc = 0.074 m/s).
+    let rows: Vec<Row> = vec![([0.2, -0.1, -0.03], [0.0; 3], 1e-5, [0.0, 0.0, 1.0])];
+    let (mut a, mut b) = (Arrays::new(&rows), Arrays::new(&rows));
+    assert_eq!(unsafe { depo_apply_f64(kept, &mut a.batch(false, false), null_mut()) }, DEPO_OK);
+    assert_eq!(unsafe { depo_apply_f64(law, &mut b.batch(false, false), null_mut()) }, DEPO_OK);
+    assert_eq!((a.outcome[0], b.outcome[0]), (DEPO_CAPTURED, DEPO_CAPTURED));
+    let reference = WallLaw::new(LawParams::from(li1997())).unwrap().with_capture_mode(CaptureMode::KeepOnWall);
+    let r = reference.impact(glam::DVec3::new(0.2, -0.1, -0.03), None, glam::DVec3::Z);
+    assert!(r.coefficients.captured);
+    let kept_v = [a.v[0][0], a.v[1][0], a.v[2][0]];
+    assert_eq!(kept_v.map(f64::to_bits), r.velocity.map(f64::to_bits));
+    assert!(kept_v[2] == 0.0 && kept_v[0] != 0.0, "{kept_v:?}");
+    assert_eq!([b.v[0][0], b.v[1][0], b.v[2][0]], [0.0; 3], "the default deposits");
+    let mut untouched = law;
+    assert_eq!(unsafe { depo_law_with_capture_mode(law, 7, &mut untouched) }, DEPO_ERR_INVALID);
+    assert_eq!(untouched, law);
+    assert!(last_error().contains("capture mode 7"), "{}", last_error());
+    unsafe {
+        depo_law_free(kept);
+        depo_law_free(law);
+    }
+}

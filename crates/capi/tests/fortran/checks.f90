@@ -1,14 +1,17 @@
 !> The Fortran module's argument checks: every array against the batch size, sets of optional
 !> arguments given whole, a normal required; each failure returns its status, changes nothing,
-!> and leaves a message. Also the single-precision apply and reading a law's constants back.
+!> and leaves a message. Also the single-precision apply, reading a law's constants back and
+!> the keep-on-wall capture mode.
 !> Run by crates/capi/tests/examples.rs (also under valgrind); stops with a message on failure.
 program checks
   use, intrinsic :: iso_c_binding, only: c_double, c_float, c_int8_t, c_int64_t
   use depo
   implicit none
   integer, parameter :: dp = c_double, sp = c_float
-  type(depo_law_t) :: law
+  type(depo_law_t) :: law, kept
   type(depo_law_params) :: params
+  real(dp) :: sx(1), sy(1), sz(1)
+  integer(c_int8_t) :: so(1)
   type(depo_tally) :: tally
   real(dp) :: vx(4), vy(4), vz(4), nx(4), ny(4), nz(4), wx(4), wy(4), wz(4), radius(4), vc(4)
   real(dp) :: short(3), e(4), r(4), vn(4), empty(0), mass(4), deposited(2)
@@ -22,6 +25,20 @@ program checks
   call depo_law_get_params(law, params)
   call check(params%k1 == 12.5_dp .and. params%kappa2 == 0.065_dp .and. params%q == 0.5_dp .and. params%mu == 0.3_dp, &
              'depo_law_get_params reads the constants back')
+
+  ! Keep-on-wall capture: a slow oblique hit is captured with only its normal velocity zeroed.
+  call depo_law_keeping_on_wall(law, DEPO_CAPTURE_KEEP_ON_WALL, kept, ierr)
+  call check(ierr == DEPO_OK, 'depo_law_keeping_on_wall')
+  sx = 0.2_dp
+  sy = -0.1_dp
+  sz = -0.03_dp
+  call depo_apply(kept, sx, sy, sz, so, normal=[0.0_dp, 0.0_dp, 1.0_dp], ierr=ierr)
+  call check(ierr == DEPO_OK .and. so(1) == DEPO_CAPTURED .and. sz(1) == 0.0_dp .and. sx(1) > 0.0_dp, &
+             'a captured particle kept on the wall keeps its tangential velocity')
+  call depo_law_destroy(kept)
+  call depo_law_keeping_on_wall(law, 7, kept, ierr)
+  call check(ierr == DEPO_ERR_INVALID .and. index(depo_last_error_message(), 'capture mode 7') > 0, &
+             'an unknown capture mode is refused')
 
   ! Sizes: each array of the wrong size fails with DEPO_ERR_INVALID and changes nothing.
   call reset()
