@@ -470,6 +470,9 @@ fn scene_file_errors_name_the_file_line_and_key() {
     let negative = dir.join("negative.toml");
     std::fs::write(&negative, "[walls]\nfloor = { k = -1.0, kappa = 0.065, vc = 0.07 }\n").unwrap();
     user_error(&["room", negative.to_str().unwrap(), "--no-plot"], "walls.floor");
+    let huge = dir.join("huge.toml");
+    std::fs::write(&huge, "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [0.6]\n").unwrap();
+    user_error(&["room", huge.to_str().unwrap(), "--no-plot"], "`particles.diameters` = 0.6");
     let drag = dir.join("drag.toml");
     std::fs::write(&drag, "[run]\ndrag = \"newton\"\n").unwrap();
     user_error(&["channel", drag.to_str().unwrap()], "`run.drag` = \"newton\"");

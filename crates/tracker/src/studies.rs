@@ -155,6 +155,14 @@ pub struct RoomPoint {
 /// The deposition maps' grid.
 pub const MAP_BINS: [usize; 2] = [20, 20];
 
+/// A room study's error in its own terms: its particles' sizes are the list `particles.diameters`.
+fn for_diameters(mut e: SceneError) -> SceneError {
+    if e.field == "particles.diameter" {
+        e.field = "particles.diameters".into();
+    }
+    e
+}
+
 fn total(tallies: &[WallTally]) -> WallTally {
     let mut sum = WallTally::default();
     for t in tallies {
@@ -205,10 +213,10 @@ impl RoomStudy {
                 // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
                 // pilot has 500 particles, or a quarter of a smaller first run.
                 let pilot = (self.count / PILOT.0).max(self.count.min(500));
-                scene = with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16)?;
+                scene = with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16).map_err(for_diameters)?;
             }
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
-            let mut result = run(&scene, &injection)?;
+            let mut result = run(&scene, &injection).map_err(for_diameters)?;
             if let Some(target) = self.target_error {
                 let needed = self.needed(&result, &model, target);
                 if needed > self.count {
