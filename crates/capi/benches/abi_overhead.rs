@@ -14,8 +14,8 @@ mod capi;
 use std::time::{Duration, Instant};
 
 use capi::{
-    depo_apply_f64, depo_law_free, depo_law_preset, depo_set_num_threads, DepoImpactsF64, DepoTally, DepoWallLaw,
-    DEPO_OK,
+    depo_apply_f64, depo_apply_strided_f64, depo_law_free, depo_law_preset, depo_set_num_threads, DepoImpactsF64,
+    DepoStrides, DepoTally, DepoWallLaw, DEPO_OK,
 };
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use depo_wall_model::{Impacts, Normals, Outcome, Tally, WallLaw};
@@ -179,5 +179,73 @@ fn small_batches(c: &mut Criterion) {
     unsafe { depo_law_free(law) };
 }
 
-criterion_group!(benches, overhead, small_batches);
+/// The same 1e6 impacts kept as an array of structures (velocity and outcome of a particle
+/// side by side, 32 bytes apart) through `depo_apply_strided_f64`, against contiguous arrays
+/// through `depo_apply_f64`, interleaved: what gathering and scattering costs over the
+/// kernel.
+fn strided(c: &mut Criterion) {
+    #[repr(C)]
+    #[derive(Clone, Copy)]
+    struct Parcel {
+        v: [f64; 3],
+        outcome: u8,
+    }
+    let mut law: *mut DepoWallLaw = std::ptr::null_mut();
+    assert_eq!(unsafe { depo_law_preset(c"sim-70um".as_ptr(), &mut law) }, DEPO_OK);
+    let pristine = Data::new();
+    let mut data = Data::new();
+    let aos: Vec<Parcel> =
+        (0..N).map(|i| Parcel { v: [pristine.v[0][i], pristine.v[1][i], pristine.v[2][i]], outcome: 0 }).collect();
+    let mut parcels = aos.clone();
+    let size = std::mem::size_of::<Parcel>();
+    let strides = DepoStrides { v: [size; 3], w: [0; 3], radius: 0, normals: [0; 3], outcome: size };
+    let through_strided = |parcels: &mut Vec<Parcel>| {
+        parcels.copy_from_slice(&aos);
+        let base = parcels.as_mut_ptr().cast::<u8>();
+        let start = Instant::now();
+        let mut batch = DepoImpactsF64 {
+            n: N,
+            vx: base.cast(),
+            vy: unsafe { base.add(8) }.cast(),
+            vz: unsafe { base.add(16) }.cast(),
+            wx: std::ptr::null_mut(),
+            wy: std::ptr::null_mut(),
+            wz: std::ptr::null_mut(),
+            radius: std::ptr::null(),
+            nx: std::ptr::null(),
+            ny: std::ptr::null(),
+            nz: std::ptr::null(),
+            normal: [0.0, 0.0, 1.0],
+            outcome: unsafe { base.add(24) },
+        };
+        let mut tally = DepoTally::default();
+        let status = unsafe { depo_apply_strided_f64(law, &mut batch, &strides, &mut tally) };
+        let elapsed = start.elapsed();
+        assert_eq!(status, DEPO_OK);
+        std::hint::black_box(tally);
+        elapsed
+    };
+    let (mut contiguous_total, mut strided_total) = (Duration::ZERO, Duration::ZERO);
+    let mut group = c.benchmark_group("abi 1e6 f64 tally, strided");
+    group.sample_size(20).throughput(Throughput::Elements(N as u64));
+    group.bench_function("C depo_apply_strided_f64 (array of structures)", |b| {
+        b.iter_custom(|iters| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iters {
+                total += through_strided(&mut parcels);
+                contiguous_total += through_c(law, &mut data, &pristine);
+            }
+            strided_total += total;
+            total
+        })
+    });
+    group.finish();
+    println!(
+        "strided (array of structures) over contiguous on a 1e6-impact batch, interleaved: {:.2} times the time",
+        strided_total.as_secs_f64() / contiguous_total.as_secs_f64()
+    );
+    unsafe { depo_law_free(law) };
+}
+
+criterion_group!(benches, overhead, small_batches, strided);
 criterion_main!(benches);

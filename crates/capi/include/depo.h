@@ -191,6 +191,34 @@ typedef struct DepoTally {
 } DepoTally;
 
 /**
+ * Byte strides of a batch's arrays, for hosts that keep their particles as arrays of
+ * structures: the distance in bytes from one particle's value to the next's (a multiple of 8
+ * for the `double` arrays, at least the value's size); 0 for a contiguous array.
+ */
+typedef struct DepoStrides {
+    /**
+     * Of `vx, vy, vz`.
+     */
+    size_t v[3];
+    /**
+     * Of `wx, wy, wz`.
+     */
+    size_t w[3];
+    /**
+     * Of `radius`.
+     */
+    size_t radius;
+    /**
+     * Of `nx, ny, nz`.
+     */
+    size_t normals[3];
+    /**
+     * Of `outcome` (bytes; any stride of at least 1).
+     */
+    size_t outcome;
+} DepoStrides;
+
+/**
  * `DepoImpactsF64` in single precision.
  */
 typedef struct DepoImpactsF32 {
@@ -303,6 +331,20 @@ int32_t depo_set_num_threads(size_t threads);
  * batch (`n == 0`) is `DEPO_OK` and reads no other field.
  */
 int32_t depo_apply_f64(const struct DepoWallLaw *law, struct DepoImpactsF64 *batch, struct DepoTally *tally);
+
+/**
+ * `depo_apply_f64` on arrays with byte strides (`strides` NULL: all contiguous): each piece of
+ * 16384 particles is gathered into contiguous scratch arrays, goes through the same kernel
+ * and checks, and is scattered back, so results are those of `depo_apply_f64` on the same
+ * values, bit for bit. Every pointer must be aligned for its type and every `double` stride a
+ * multiple of 8; outputs must not share memory with any other array (arrays with the same
+ * stride may interleave, as a structure's fields do; arrays with different strides may not
+ * overlap at all). A failing call changes nothing.
+ */
+int32_t depo_apply_strided_f64(const struct DepoWallLaw *law,
+                               struct DepoImpactsF64 *batch,
+                               const struct DepoStrides *strides,
+                               struct DepoTally *tally);
 
 /**
  * `depo_apply_f64` in single precision (results within 1e-4 of the incoming speed of the

@@ -680,6 +680,169 @@ pub unsafe extern "C" fn depo_apply_f64(
     ffi_guard!({ apply_raw(law, RawBatch::from_f64(batch)?, None, tally) })
 }
 
+/// Byte strides of a batch's arrays, for hosts that keep their particles as arrays of
+/// structures: the distance in bytes from one particle's value to the next's (a multiple of 8
+/// for the `double` arrays, at least the value's size); 0 for a contiguous array.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DepoStrides {
+    /// Of `vx, vy, vz`.
+    pub v: [usize; 3],
+    /// Of `wx, wy, wz`.
+    pub w: [usize; 3],
+    /// Of `radius`.
+    pub radius: usize,
+    /// Of `nx, ny, nz`.
+    pub normals: [usize; 3],
+    /// Of `outcome` (bytes; any stride of at least 1).
+    pub outcome: usize,
+}
+
+/// Particles per piece of a strided batch: gathered into contiguous scratch arrays, handed to
+/// the kernel, and scattered back.
+const STRIDED_PIECE: usize = 16384;
+
+/// `depo_apply_f64` on arrays with byte strides (`strides` NULL: all contiguous): each piece of
+/// 16384 particles is gathered into contiguous scratch arrays, goes through the same kernel
+/// and checks, and is scattered back, so results are those of `depo_apply_f64` on the same
+/// values, bit for bit. Every pointer must be aligned for its type and every `double` stride a
+/// multiple of 8; outputs must not share memory with any other array (arrays with the same
+/// stride may interleave, as a structure's fields do; arrays with different strides may not
+/// overlap at all). A failing call changes nothing.
+#[no_mangle]
+pub unsafe extern "C" fn depo_apply_strided_f64(
+    law: *const DepoWallLaw,
+    batch: *mut DepoImpactsF64,
+    strides: *const DepoStrides,
+    tally: *mut DepoTally,
+) -> i32 {
+    ffi_guard!({
+        let raw = RawBatch::from_f64(batch)?;
+        let strides = if strides.is_null() { DepoStrides::default() } else { *strides };
+        apply_strided(law, raw, strides, tally)
+    })
+}
+
+/// One strided array of a batch: name, first element, stride and element size in bytes,
+/// written or only read.
+struct Strided {
+    name: &'static str,
+    start: usize,
+    stride: usize,
+    size: usize,
+    output: bool,
+}
+
+impl Strided {
+    /// The bytes from the first element's start to the last's end.
+    fn span(&self, n: usize) -> (usize, usize) {
+        (self.start, self.start + (n - 1) * self.stride + self.size)
+    }
+
+    /// Whether the two arrays may share a byte: their spans meet and, with equal strides, their
+    /// elements fall on the same bytes of a stride; with different strides, spans that meet.
+    fn may_overlap(&self, other: &Strided, n: usize) -> bool {
+        let ((a0, a1), (b0, b1)) = (self.span(n), other.span(n));
+        if a1 <= b0 || b1 <= a0 {
+            return false;
+        }
+        if self.stride != other.stride {
+            return true;
+        }
+        let s = self.stride;
+        let d = (other.start as isize - self.start as isize).rem_euclid(s as isize) as usize;
+        d < self.size || d + other.size > s
+    }
+}
+
+unsafe fn apply_strided(
+    law: *const DepoWallLaw,
+    raw: RawBatch<f64>,
+    strides: DepoStrides,
+    tally: *mut DepoTally,
+) -> Result<(), Failure> {
+    let n = raw.n;
+    if n == 0 {
+        return apply_raw(law, raw, None, tally);
+    }
+    const F64: usize = std::mem::size_of::<f64>();
+    let mut arrays = Vec::new();
+    let mut add = |name: &'static str, ptr: usize, stride: usize, size: usize, output: bool| {
+        if ptr == 0 {
+            return Ok(());
+        }
+        let stride = if stride == 0 { size } else { stride };
+        if stride < size || stride % size != 0 || ptr % size != 0 {
+            return Err(Failure::invalid(format!(
+                "{name}: stride {stride} bytes at address {ptr:#x}: each value must be aligned, {size} bytes apart or a multiple of that"
+            )));
+        }
+        arrays.push(Strided { name, start: ptr, stride, size, output });
+        Ok(())
+    };
+    for (k, name) in ["vx", "vy", "vz"].into_iter().enumerate() {
+        add(name, raw.v[k] as usize, strides.v[k], F64, true)?;
+    }
+    for (k, name) in ["wx", "wy", "wz"].into_iter().enumerate() {
+        add(name, raw.w[k] as usize, strides.w[k], F64, true)?;
+    }
+    add("radius", raw.radius as usize, strides.radius, F64, false)?;
+    for (k, name) in ["nx", "ny", "nz"].into_iter().enumerate() {
+        add(name, raw.normals[k] as usize, strides.normals[k], F64, false)?;
+    }
+    add("outcome", raw.outcome as usize, strides.outcome, 1, true)?;
+    for (i, a) in arrays.iter().enumerate() {
+        for b in &arrays[i + 1..] {
+            if (a.output || b.output) && a.may_overlap(b, n) {
+                return Err(Failure::invalid(format!("{} and {} share memory", a.name, b.name)));
+            }
+        }
+    }
+    // Each array's base and stride, in the order of `arrays` (absent ones are not there).
+    let find = |name: &str| arrays.iter().find(|a| a.name == name).map(|a| (a.start, a.stride));
+    let piece = n.min(STRIDED_PIECE);
+    let mut scratch: Vec<Vec<f64>> = (0..10).map(|_| vec![0.0; piece]).collect();
+    let mut outcome = vec![0u8; piece];
+    let names = ["vx", "vy", "vz", "wx", "wy", "wz", "radius", "nx", "ny", "nz"];
+    let located: Vec<Option<(usize, usize)>> = names.iter().map(|&name| find(name)).collect();
+    let out = find("outcome");
+    for first in (0..n).step_by(STRIDED_PIECE) {
+        let m = (n - first).min(STRIDED_PIECE);
+        for (values, at) in scratch.iter_mut().zip(&located) {
+            if let Some((start, stride)) = *at {
+                for (k, x) in values[..m].iter_mut().enumerate() {
+                    *x = *((start + (first + k) * stride) as *const f64);
+                }
+            }
+        }
+        let p: [*mut f64; 10] =
+            std::array::from_fn(|k| if located[k].is_some() { scratch[k].as_mut_ptr() } else { std::ptr::null_mut() });
+        let piece = RawBatch {
+            n: m,
+            v: [p[0], p[1], p[2]],
+            w: [p[3], p[4], p[5]],
+            radius: p[6].cast_const(),
+            normals: [p[7].cast_const(), p[8].cast_const(), p[9].cast_const()],
+            normal: raw.normal,
+            outcome: if out.is_some() { outcome.as_mut_ptr() } else { std::ptr::null_mut() },
+        };
+        apply_raw(law, piece, None, tally)?;
+        for (values, at) in scratch.iter().zip(&located).take(6) {
+            if let Some((start, stride)) = *at {
+                for (k, x) in values[..m].iter().enumerate() {
+                    *((start + (first + k) * stride) as *mut f64) = *x;
+                }
+            }
+        }
+        if let Some((start, stride)) = out {
+            for (k, o) in outcome[..m].iter().enumerate() {
+                *((start + (first + k) * stride) as *mut u8) = *o;
+            }
+        }
+    }
+    Ok(())
+}
+
 /// `depo_apply_f64` in single precision (results within 1e-4 of the incoming speed of the
 /// double-precision ones away from the capture and rolling thresholds).
 #[no_mangle]

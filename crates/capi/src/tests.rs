@@ -742,3 +742,94 @@ fn keep_on_wall_capture_mode_through_the_abi() {
         depo_law_free(law);
     }
 }
+
+/// A particle as an array-of-structures host keeps it.
+#[repr(C)]
+#[derive(Clone, Copy, Default)]
+struct Parcel {
+    v: [f64; 3],
+    w: [f64; 3],
+    radius: f64,
+    n: [f64; 3],
+    outcome: u8,
+}
+
+/// Strided arrays (a host's array of structures) give what contiguous arrays of the same values
+/// give, bit for bit, tally too, across several pieces; bad strides, misaligned bases and
+/// outputs that share memory are refused and change nothing.
+#[test]
+fn strided_arrays_of_structures_match_contiguous_arrays() {
+    let law = new_law(li1997());
+    let n = 40_000; // three pieces
+    let mut parcels: Vec<Parcel> = (0..n)
+        .map(|i| {
+            let t = i as f64;
+            let n = [0.6 * (t * 0.37).sin(), 0.0, 0.8];
+            let len = (n[0] * n[0] + n[2] * n[2]).sqrt();
+            Parcel {
+                v: [(t * 0.013).sin(), (t * 0.029).cos(), -0.02 - 3.0 * ((t * 0.007).sin()).abs()],
+                w: [10.0 * (t * 0.3).cos(), 0.0, 5.0],
+                radius: 1e-5,
+                n: [n[0] / len, 0.0, n[2] / len],
+                outcome: 9,
+            }
+        })
+        .collect();
+    let rows: Vec<Row> = parcels.iter().map(|p| (p.v, p.w, p.radius, p.n)).collect();
+    let mut soa = Arrays::new(&rows);
+    let mut expected = DepoTally::default();
+    assert_eq!(unsafe { depo_apply_f64(law, &mut soa.batch(true, true), &mut expected) }, DEPO_OK);
+
+    let size = std::mem::size_of::<Parcel>();
+    let base = parcels.as_mut_ptr();
+    let field = |offset: usize| unsafe { base.cast::<u8>().add(offset).cast::<f64>() };
+    let strided = |vx: usize| DepoImpactsF64 {
+        n,
+        vx: field(vx),
+        vy: field(8),
+        vz: field(16),
+        wx: field(24),
+        wy: field(32),
+        wz: field(40),
+        radius: field(48),
+        nx: field(56),
+        ny: field(64),
+        nz: field(72),
+        normal: [0.0; 3],
+        outcome: unsafe { base.cast::<u8>().add(80) },
+    };
+    let strides = DepoStrides { v: [size; 3], w: [size; 3], radius: size, normals: [size; 3], outcome: size };
+    // Refused, and nothing changed: a stride below the value's size, a misaligned base, and vx
+    // on top of vy.
+    let bad = DepoStrides { v: [4, size, size], ..strides };
+    assert_eq!(unsafe { depo_apply_strided_f64(law, &mut strided(0), &bad, null_mut()) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("vx"), "{}", last_error());
+    let shifted = unsafe { base.cast::<u8>().add(1).cast::<f64>() };
+    let mut misaligned = DepoImpactsF64 { vx: shifted, ..strided(0) };
+    assert_eq!(unsafe { depo_apply_strided_f64(law, &mut misaligned, &strides, null_mut()) }, DEPO_ERR_INVALID);
+    assert_eq!(unsafe { depo_apply_strided_f64(law, &mut strided(8), &strides, null_mut()) }, DEPO_ERR_INVALID);
+    assert!(last_error().contains("share memory"), "{}", last_error());
+    assert!(parcels.iter().all(|p| p.outcome == 9), "a refused call changed nothing");
+
+    let mut tally = DepoTally::default();
+    assert_eq!(
+        unsafe { depo_apply_strided_f64(law, &mut strided(0), &strides, &mut tally) },
+        DEPO_OK,
+        "{}",
+        last_error()
+    );
+    for (i, p) in parcels.iter().enumerate() {
+        assert_eq!(p.outcome, soa.outcome[i], "{i}");
+        for k in 0..3 {
+            assert_eq!(p.v[k].to_bits(), soa.v[k][i].to_bits(), "{i}");
+            assert_eq!(p.w[k].to_bits(), soa.w[k][i].to_bits(), "{i}");
+        }
+    }
+    assert_eq!(
+        (tally.rebound, tally.captured, tally.skipped, tally.invalid),
+        (expected.rebound, expected.captured, expected.skipped, expected.invalid)
+    );
+    assert!(tally.rebound > 0 && tally.captured > 0);
+    assert!((tally.energy_material - expected.energy_material).abs() <= 1e-9 * expected.energy_material);
+    unsafe { depo_law_free(law) };
+}
