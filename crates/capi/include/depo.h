@@ -5,7 +5,7 @@
      of the last failure on the calling thread. A failing call changes nothing.
    - Arrays are structure-of-arrays: n contiguous values each, aligned as their element type
      (malloc, new, std::vector and Fortran arrays are; no wider alignment is needed, on x86 or
-     elsewhere). Strided or array-of-structures data is not supported: copy it into arrays.
+     elsewhere). Strided or array-of-structures data goes through depo_apply_strided_f64.
    - Outputs (batch arrays written in place, coefficient arrays, deposition counts, the tally)
      must not overlap the inputs or each other; an overlap is DEPO_ERR_INVALID, except the
      tally's, which is not checked (it is written after the batch is done).
@@ -121,8 +121,8 @@ typedef struct DepoLawParams {
  * A batch of wall contacts in double precision, as structure-of-arrays pointers into the
  * host's memory: each array holds `n` contiguous values, aligned as its element type (as
  * malloc, new, std::vector and Fortran arrays give them; no wider alignment is needed, on x86
- * or elsewhere). Strided or array-of-structures data is not supported: copy it into arrays
- * first. Arrays must not overlap each other (`DEPO_ERR_INVALID`, as is a misaligned array)
+ * or elsewhere). Strided or array-of-structures data goes through `depo_apply_strided_f64`
+ * with the same batch and its strides. Arrays must not overlap each other (`DEPO_ERR_INVALID`, as is a misaligned array)
  * nor the tally (not checked).
  */
 typedef struct DepoImpactsF64 {

@@ -103,8 +103,8 @@ pub struct DepoTally {
 /// A batch of wall contacts in double precision, as structure-of-arrays pointers into the
 /// host's memory: each array holds `n` contiguous values, aligned as its element type (as
 /// malloc, new, std::vector and Fortran arrays give them; no wider alignment is needed, on x86
-/// or elsewhere). Strided or array-of-structures data is not supported: copy it into arrays
-/// first. Arrays must not overlap each other (`DEPO_ERR_INVALID`, as is a misaligned array)
+/// or elsewhere). Strided or array-of-structures data goes through `depo_apply_strided_f64`
+/// with the same batch and its strides. Arrays must not overlap each other (`DEPO_ERR_INVALID`, as is a misaligned array)
 /// nor the tally (not checked).
 #[repr(C)]
 #[derive(Debug)]
