@@ -213,6 +213,21 @@ depo_cs_apply_time(void)
   return _apply_time;
 }
 
+/* Puts the particle back at the contact point, a millionth of the way towards its cell's
+   centre, in that cell. */
+static void
+_put_back(cs_lagr_particle_set_t  *particles,
+          cs_lnum_t                p_id,
+          const cs_real_t          c_intersect[3],
+          const cs_real_t          centre[3],
+          cs_lnum_t                cell_id)
+{
+  cs_real_t *coords = cs_lagr_particles_attr(particles, p_id, CS_LAGR_COORDS);
+  for (int k = 0; k < 3; k++)
+    coords[k] = c_intersect[k] + 1e-6 * (centre[k] - c_intersect[k]);
+  cs_lagr_particles_set_lnum(particles, p_id, CS_LAGR_CELL_ID, cell_id);
+}
+
 void
 cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
                                   cs_lnum_t                  p_id,
@@ -254,22 +269,26 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
   double start = _now();
   if (depo_apply_f64(_laws[b_zone_id], &batch, NULL) != DEPO_OK)
     outcome = DEPO_INVALID; /* a face normal not of unit length: leaves v untouched */
-  _apply_time += _now() - start;
+  double elapsed = _now() - start;
 
-  if (_record != NULL)
-    fprintf(_record, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
-            b_zone_id, cs_lagr_particles_get_real(particles, p_id, CS_LAGR_DIAMETER),
-            in[0], in[1], in[2], batch.normal[0], batch.normal[1],
-            batch.normal[2], v[0], v[1], v[2], (int)outcome);
-  if (outcome <= DEPO_INVALID)
+  /* Code_Saturne may track particles on several OpenMP threads: shared counters and the
+     record are updated one thread at a time. */
+# pragma omp atomic
+  _apply_time += elapsed;
+  if (outcome <= DEPO_INVALID) {
+#   pragma omp atomic
     _counts[outcome] += 1;
-
-  cs_real_t *coords = cs_lagr_particles_attr(particles, p_id, CS_LAGR_COORDS);
+  }
+  if (_record != NULL) {
+    double d = cs_lagr_particles_get_real(particles, p_id, CS_LAGR_DIAMETER);
+#   pragma omp critical (depo_record)
+    fprintf(_record, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
+            b_zone_id, d, in[0], in[1], in[2], batch.normal[0], batch.normal[1],
+            batch.normal[2], v[0], v[1], v[2], (int)outcome);
+  }
 
   if (outcome == DEPO_REBOUND) {
-    for (int k = 0; k < 3; k++)
-      coords[k] = c_intersect[k] + 1e-6 * (centre[k] - c_intersect[k]);
-    cs_lagr_particles_set_lnum(particles, p_id, CS_LAGR_CELL_ID, cell_id);
+    _put_back(particles, p_id, c_intersect, centre, cell_id);
     cs_real_t *seen = cs_lagr_particles_attr(particles, p_id, CS_LAGR_VELOCITY_SEEN);
     cs_real_t un = seen[0] * batch.normal[0] + seen[1] * batch.normal[1] + seen[2] * batch.normal[2];
     for (int k = 0; k < 3; k++)
@@ -288,17 +307,16 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
          memory, and fixed (without CS_LAGR_PART_FIXED the particle equations would go on
          moving it). */
       cs_lagr_particles_set_flag(particles, p_id, CS_LAGR_PART_FIXED);
+      _put_back(particles, p_id, c_intersect, centre, cell_id);
       cs_real_t *seen = cs_lagr_particles_attr(particles, p_id, CS_LAGR_VELOCITY_SEEN);
-      for (int k = 0; k < 3; k++) {
-        coords[k] = c_intersect[k] + 1e-6 * (centre[k] - c_intersect[k]);
+      for (int k = 0; k < 3; k++)
         seen[k] = 0.0;
-      }
-      cs_lagr_particles_set_lnum(particles, p_id, CS_LAGR_CELL_ID, cell_id);
       *event_flag = *event_flag | CS_EVENT_DEPOSITION;
       *tracking_state = CS_LAGR_PART_STUCK;
     }
     else {
-      /* As CS_LAGR_DEPO1: removed from the flow. */
+      /* As CS_LAGR_DEPO1: removed from the flow, at the contact point. */
+      cs_real_t *coords = cs_lagr_particles_attr(particles, p_id, CS_LAGR_COORDS);
       for (int k = 0; k < 3; k++)
         coords[k] = c_intersect[k];
       *event_flag = *event_flag | (CS_EVENT_OUTFLOW | CS_EVENT_DEPOSITION);
@@ -309,9 +327,7 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
     /* The step's displacement crossed the face but the velocity at its end already points
        away from the wall (turbulent dispersion, drag): not an impact. The particle is put
        back at the contact point with its velocity, as for a rebound. */
-    for (int k = 0; k < 3; k++)
-      coords[k] = c_intersect[k] + 1e-6 * (centre[k] - c_intersect[k]);
-    cs_lagr_particles_set_lnum(particles, p_id, CS_LAGR_CELL_ID, cell_id);
+    _put_back(particles, p_id, c_intersect, centre, cell_id);
     *tracking_state = CS_LAGR_PART_TREATED;
   }
   else {

@@ -798,14 +798,15 @@ unsafe fn apply_strided(
             }
         }
     }
-    // Each array's base and stride, in the order of `arrays` (absent ones are not there).
+    // Each array's base and stride (`None` where the batch has no such array), and scratch
+    // space for a piece of the arrays it has.
     let find = |name: &str| arrays.iter().find(|a| a.name == name).map(|a| (a.start, a.stride));
-    let piece = n.min(STRIDED_PIECE);
-    let mut scratch: Vec<Vec<f64>> = (0..10).map(|_| vec![0.0; piece]).collect();
-    let mut outcome = vec![0u8; piece];
     let names = ["vx", "vy", "vz", "wx", "wy", "wz", "radius", "nx", "ny", "nz"];
-    let located: Vec<Option<(usize, usize)>> = names.iter().map(|&name| find(name)).collect();
+    let located: [Option<(usize, usize)>; 10] = names.map(find);
     let out = find("outcome");
+    let piece = n.min(STRIDED_PIECE);
+    let mut scratch: [Vec<f64>; 10] = located.map(|at| if at.is_some() { vec![0.0; piece] } else { Vec::new() });
+    let mut outcome = vec![0u8; if out.is_some() { piece } else { 0 }];
     for first in (0..n).step_by(STRIDED_PIECE) {
         let m = (n - first).min(STRIDED_PIECE);
         for (values, at) in scratch.iter_mut().zip(&located) {

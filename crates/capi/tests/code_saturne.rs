@@ -7,41 +7,13 @@
 //! is 1: then it says SKIPPED on stderr (never a silent pass), as the example tests do.
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use depo_wall_model::{LawParams, WallLaw};
 use glam::DVec3;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
-}
-
-/// Builds libdepo in the profile of this test binary and returns the directory holding it.
-fn libdir() -> PathBuf {
-    // target/<profile>/deps/code_saturne-<hash>
-    let exe = std::env::current_exe().unwrap();
-    let profile_dir = exe.parent().unwrap().parent().unwrap().to_path_buf();
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let mut build = Command::new(cargo);
-    build.current_dir(root()).args(["build", "-q", "-p", "depo-capi"]);
-    if profile_dir.file_name().is_some_and(|n| n == "release") {
-        build.arg("--release");
-    }
-    assert!(build.status().expect("cargo build -p depo-capi").success(), "building libdepo failed");
-    profile_dir
-}
-
-fn run(cmd: &mut Command) -> String {
-    let out = cmd.output().unwrap_or_else(|e| panic!("{cmd:?}: {e}"));
-    assert!(
-        out.status.success(),
-        "{cmd:?} failed\nstdout:\n{}\nstderr:\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+mod common;
+use common::{libdir, root, run};
 
 /// The zones' names and laws the run reported, by boundary zone id: its log lines
 /// `depo: zone "floor" (id 1): preset li1997-sio2`.
@@ -81,7 +53,7 @@ fn check_case_contacts_are_the_wall_law_to_round_off() {
              code-saturne-include; .ci/run does), or set DEPO_SKIP_CODE_SATURNE=1 to skip this test"
         );
     }
-    let lib = libdir();
+    let lib = libdir().to_path_buf();
     let work = lib.join("code-saturne");
     let prefix = work.join("prefix");
     let integration = root().join("integrations/code_saturne");
