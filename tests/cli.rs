@@ -480,6 +480,7 @@ fn room_reports_the_decay_curve_and_where_the_release_ends() {
     let svg = std::fs::read_to_string(plots.join("room-decay.svg")).unwrap();
     assert!(legend_y(&svg, "10 um (depo, +- 1 s.e.)") > 500.0);
     assert!(svg.contains("10 um: fit, beta = "), "the fitted line is in the legend");
+    assert!(legend_y(&svg, "ventilation alone, exp(-a t), a = 2 /h") > 500.0);
     // CSV: the fitted beta and the shares as columns; the table's second part.
     let out =
         String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]).stdout).unwrap();

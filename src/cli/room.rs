@@ -684,6 +684,18 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
             ));
         }
     }
+    // What ventilation alone would leave, for reference.
+    let a = study.scene.air_exchange;
+    if a > 0.0 {
+        let end = study.scene.duration;
+        series.push(
+            Series::line(
+                format!("ventilation alone, exp(-a t), a = {} /h", a * 3600.0),
+                vec![(0.0, 1.0), (end / 60.0, (-a * end).exp())],
+            )
+            .color(7),
+        );
+    }
     plot::semilog_y(&decay, "Airborne share after a release", "time (min)", "N(t) / N(0)", &series)?;
     let curves = dir.join("room-decay.csv");
     std::fs::write(&curves, text).map_err(|e| format!("cannot write {}: {e}", curves.display()))?;
