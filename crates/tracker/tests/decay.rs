@@ -3,7 +3,7 @@
 //! the fitted `beta` agrees with the study's own.
 
 use depo_tracker::studies::RoomStudy;
-use depo_tracker::{run, Geometry, Injection, Scene, SizeDistribution, WallBehaviour};
+use depo_tracker::{run, Excursions, Geometry, Injection, Scene, SizeDistribution, WallBehaviour};
 
 /// Mirror walls, still air, no gravity: nothing deposits, ventilation alone takes particles.
 fn ventilated_box(a: f64, seed: u64) -> Scene {
@@ -86,4 +86,25 @@ fn fitted_beta_agrees_with_the_study_beta_where_both_resolve() {
     assert!((mass / point.released.1 - 1.0).abs() < 1e-12);
     assert!(point.exhausted.0 > 0 && point.deposited[0].0 > point.deposited[2].0 && point.deposited[1].0 == 0);
     assert_eq!(point.decay.counts.last(), Some(&point.airborne.0));
+}
+
+/// Excursions leave the decay curve alone: they start from the tracked particles and never
+/// change them, so a ventilated room gives the same curve, particle for particle, with and
+/// without them (3 um, where the tracked particles deposit and excursions run).
+#[test]
+fn the_decay_curve_does_not_depend_on_excursions() {
+    let mut scene = RoomStudy::default().scene;
+    scene.duration = 300.0;
+    scene.average_from = 30.0;
+    scene.air_exchange = 2.0 / 3600.0;
+    let injection = Injection::new(300, SizeDistribution::Monodisperse { diameter: 3e-6 }, 1000.0);
+    let plain = run(&scene, &injection).unwrap();
+    let nu = scene.air.kinematic_viscosity();
+    scene.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
+    let split = run(&scene, &injection).unwrap();
+    assert!(split.particles.iter().any(|p| p.excursions > 0 && p.deposited.iter().sum::<f64>() > 0.0));
+    let (a, b) = (plain.decay_curve(40), split.decay_curve(40));
+    assert_eq!(a, b);
+    assert!(a.counts[40] < 300, "some leave the air: {:?}", a.counts);
+    assert_eq!(plain.decay_fit(&a, scene.air_exchange), split.decay_fit(&b, scene.air_exchange));
 }
