@@ -13,10 +13,13 @@
 //! particles and never change them, and their weighted deposits estimate the *steady*
 //! deposition rate that the study's `beta` reports. They do not enter the curve, which is what
 //! a particle counter would read in the simulated room: the tracked particles leave the air by
-//! their own deposits, as in plain tracking (a test shows the same curve, particle for
-//! particle, with excursions and without). Where deposition is rare (accumulation-mode
-//! particles) the curve therefore resolves `beta` far less well than the excursions do; that
-//! is also the experimenters' lot, whose decay rates are least certain there.
+//! their own deposits and by ventilation, as in plain tracking (a test shows the same curve,
+//! particle for particle, with excursions and without). Where deposition is rare
+//! (accumulation-mode particles) the curve therefore resolves `beta` far less well than the
+//! excursions do; that is also the experimenters' lot, whose decay rates are least certain
+//! there. And where the Brownian sublayer has not filled within the run, the two differ in
+//! what they measure: the curve sees the deposition of the room as released, the excursions
+//! the steady rate (see [`crate::excursions`]).
 //!
 //! ## The fit
 //! Thatcher et al. (2002, Atmospheric Environment 36, 1811-1819) released a short burst of
