@@ -13,6 +13,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let result = run(&scene, &particles)?; // on the current rayon pool
     let floor = result.deposition_velocity(&[0]); // v_d onto the floor, m/s
     let beta = result.loss_rate(); // 1/s
+    let curve = result.decay_curve(40); // N(t)/N(0) at 41 times from the release
+    let fitted = result.decay_fit(&curve, scene.air_exchange); // the decay experiment's beta
     let balance = result.balance();
     println!(
         "floor v_d {:.2e} +- {:.1e} m/s ({} deposits), beta {:.3} 1/h, {} of {} particles airborne after {} s",
@@ -24,5 +26,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         balance.injected,
         result.duration
     );
+    if let Some(fit) = fitted {
+        println!(
+            "beta fitted to the decay over {:?} s: {:.3} +- {:.3} 1/h",
+            fit.window,
+            fit.beta.value * 3600.0,
+            fit.beta.error * 3600.0
+        );
+    }
     Ok(())
 }

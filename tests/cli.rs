@@ -428,6 +428,71 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     assert!(table.contains("* unresolved: no deposit event, or a relative standard error above 5 %"), "{table}");
 }
 
+/// A ventilated room read as a decay experiment: the decay curve per size (JSON, CSV file,
+/// figure), the `beta` fitted to it beside the study's, and where the release ends, per
+/// surface, exhausted and airborne, by number and mass.
+#[test]
+fn room_reports_the_decay_curve_and_where_the_release_ends() {
+    let dir = scratch("room-decay");
+    let scene = dir.join("ventilated.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [10e-6]\ncount = 300\ntarget_error = 0.0\n\
+         [ventilation]\nair_changes_per_hour = 2.0\n[run]\ndt = 0.05\nduration = 300.0\n",
+    )
+    .unwrap();
+    let plots = dir.join("figures");
+    let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--plot", plots.to_str().unwrap()]);
+    let ten = &report["sizes"][0];
+    let curve = &ten["decay"];
+    let times: Vec<f64> = curve["times_s"].as_array().unwrap().iter().map(|t| t.as_f64().unwrap()).collect();
+    assert_eq!(times.len(), 41);
+    assert_eq!((times[0], times[40]), (0.0, 300.0));
+    assert_eq!(curve["airborne"][0], 1.0);
+    assert_eq!(curve["count"][0], 300);
+    // The fit: beta = total - a (2 per hour), over the window from the averages' start (30 s).
+    let fit = &ten["decay_fit"];
+    let (fitted, total) =
+        (fit["beta_per_hour"]["value"].as_f64().unwrap(), fit["total_per_hour"]["value"].as_f64().unwrap());
+    assert!((total - fitted - 2.0).abs() < 1e-9, "{fit}");
+    assert_eq!(fit["window_s"][0], 30.0);
+    let beta = &ten["beta_per_hour"];
+    let z = (fitted - beta["value"].as_f64().unwrap())
+        / (fit["beta_per_hour"]["error"].as_f64().unwrap().powi(2) + beta["error"].as_f64().unwrap().powi(2)).sqrt();
+    assert!((z - fit["z"].as_f64().unwrap()).abs() < 1e-9 && z.abs() < 3.0, "{fit} {beta}");
+    // The release, exactly: shares of number and mass add up to 1; the floor's loading is its
+    // mass share over its 1 m^2; the last sample's airborne count is the airborne at the end.
+    let release = &ten["release"];
+    let parts = ["floor", "ceiling", "walls", "exhausted", "airborne"];
+    let count: u64 = parts.iter().map(|p| release[p]["count"].as_u64().unwrap()).sum();
+    assert_eq!(count, 300);
+    let mass: f64 = parts.iter().map(|p| release[p]["mass_share"].as_f64().unwrap()).sum();
+    assert!((mass - 1.0).abs() < 1e-12);
+    let floor = &release["floor"];
+    assert!(floor["share"].as_f64().unwrap() > 0.3 && release["exhausted"]["count"].as_u64().unwrap() > 0, "{release}");
+    assert!((floor["loading_per_m2"].as_f64().unwrap() - floor["mass_share"].as_f64().unwrap()).abs() < 1e-12);
+    assert!(release["exhausted"].get("loading_per_m2").is_none());
+    assert_eq!(curve["count"][40], release["airborne"]["count"]);
+    // The curves as CSV and as a figure with the fitted line.
+    let csv = std::fs::read_to_string(plots.join("room-decay.csv")).unwrap();
+    assert_eq!(csv.lines().next(), Some("diameter_um,time_s,airborne,error,count"));
+    assert_eq!(csv.lines().count(), 42);
+    let svg = std::fs::read_to_string(plots.join("room-decay.svg")).unwrap();
+    assert!(legend_y(&svg, "10 um (depo, +- 1 s.e.)") > 500.0);
+    assert!(svg.contains("10 um: fit, beta = "), "the fitted line is in the legend");
+    assert!(legend_y(&svg, "ventilation alone, exp(-a t), a = 2 /h") > 500.0);
+    // CSV: the fitted beta and the shares as columns; the table's second part.
+    let out =
+        String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]).stdout).unwrap();
+    let header: Vec<&str> = out.lines().next().unwrap().split(',').collect();
+    let row: Vec<&str> = out.lines().nth(1).unwrap().split(',').collect();
+    let column = |name: &str| row[header.iter().position(|h| *h == name).expect(name)].parse::<f64>().unwrap();
+    assert!((column("beta_fitted_per_hour") - fitted).abs() < 1e-9 * fitted.abs());
+    assert_eq!(column("floor_share"), floor["share"].as_f64().unwrap());
+    let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
+    assert!(table.contains("beta fitted (1/h)") && table.contains("exhausted"), "{table}");
+}
+
 #[test]
 fn channel_reports_v_plus_beside_wood() {
     let dir = scratch("channel");

@@ -100,6 +100,11 @@ pub fn log_log(path: &Path, title: &str, x_label: &str, y_label: &str, series: &
     chart(path, title, (x_label, y_label), series, (true, true))
 }
 
+/// [`lines`] with a linear x axis and a logarithmic y axis (a decay curve is a straight line).
+pub fn semilog_y(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<(), Error> {
+    chart(path, title, (x_label, y_label), series, (false, true))
+}
+
 /// A series as drawn: the points the axes can show, and the legend entry that says what was
 /// left off.
 struct Drawn {

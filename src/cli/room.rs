@@ -5,9 +5,10 @@ use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use depo::tracker::correlations::LaiNazaroff;
+use depo::tracker::decay::MIN_AIRBORNE;
 use depo::tracker::studies::MAP_BINS;
 use depo::tracker::studies::{RoomPoint, RoomStudy};
-use depo::tracker::{Estimate, Flow, Geometry, WallTally};
+use depo::tracker::{DecayCurve, Estimate, Flow, Geometry, WallTally};
 use serde::Serialize;
 
 use super::plot::{self, Series};
@@ -20,7 +21,8 @@ pub struct RoomArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     format: Format,
-    /// Directory for the figures (room-deposition.svg, room-beta.svg).
+    /// Directory for the figures (room-deposition.svg, room-beta.svg, room-decay.svg) and the
+    /// decay curves (room-decay.csv).
     #[arg(long, default_value = "depo-room")]
     plot: PathBuf,
     /// Write no figures.
@@ -141,6 +143,13 @@ struct Row {
     excursions_truncated: Option<f64>,
     wall_tally: Tally,
     deposited: Deposited,
+    /// Where the released particles are at the end: per surface, exhausted, airborne.
+    release: Release,
+    /// `beta` fitted to the decay curve as decay experiments fit it; absent when fewer than 3
+    /// sample times qualify.
+    decay_fit: Option<DecayFitRow>,
+    /// The airborne share of the release over the run.
+    decay: Curve,
     /// The surfaces (floor, ceiling, walls) whose figure is unresolved: no deposit event, or
     /// a relative standard error above 5 % where Lai & Nazaroff give at least 1e-7 m/s.
     unresolved: Vec<&'static str>,
@@ -159,6 +168,85 @@ struct Deposited {
     walls_kg: f64,
 }
 
+/// One fate of the release: the count of tracked particles, their share of the released
+/// number with its binomial standard error, their mass (kg) and its share of the released
+/// mass, and on a surface the deposited mass per unit area per unit released mass (1/m^2,
+/// i.e. kg/m^2 per kg released).
+#[derive(Serialize)]
+struct Share {
+    count: usize,
+    share: f64,
+    share_error: f64,
+    kg: f64,
+    mass_share: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    loading_per_m2: Option<f64>,
+}
+
+impl Share {
+    /// `(count, kg)` of `released`, onto a surface of `area` (m^2) if any.
+    fn of((count, kg): (usize, f64), released: (usize, f64), area: Option<f64>) -> Self {
+        let n = released.0.max(1) as f64;
+        let share = count as f64 / n;
+        let mass_share = if released.1 > 0.0 { kg / released.1 } else { 0.0 };
+        Self {
+            count,
+            share,
+            share_error: (share * (1.0 - share) / n).sqrt(),
+            kg,
+            mass_share,
+            loading_per_m2: area.map(|a| mass_share / a),
+        }
+    }
+}
+
+/// The release at the end of the run.
+#[derive(Serialize)]
+struct Release {
+    particles: usize,
+    kg: f64,
+    floor: Share,
+    ceiling: Share,
+    walls: Share,
+    exhausted: Share,
+    airborne: Share,
+}
+
+/// `beta` fitted to the decay curve: the total loss rate `k`, `beta = k - a`, both per hour
+/// with the delta method's standard error, the fit's window and points, and how many
+/// combined standard errors the fitted `beta` lies from the study's.
+#[derive(Serialize)]
+struct DecayFitRow {
+    beta_per_hour: Measured,
+    total_per_hour: Measured,
+    window_s: [f64; 2],
+    points: usize,
+    z: f64,
+}
+
+/// A decay curve: sample times (s), the airborne share, its standard error, and the count.
+#[derive(Serialize)]
+struct Curve {
+    times_s: Vec<f64>,
+    airborne: Vec<f64>,
+    error: Vec<f64>,
+    count: Vec<usize>,
+    #[serde(skip)]
+    intercept: Option<f64>,
+}
+
+impl Curve {
+    fn of(c: &DecayCurve) -> Self {
+        Self {
+            times_s: c.times.clone(),
+            airborne: c.airborne.clone(),
+            error: c.errors.clone(),
+            count: c.counts.clone(),
+            intercept: None,
+        }
+    }
+}
+
 #[derive(Serialize)]
 struct Report<'a> {
     size_m: [f64; 3],
@@ -174,7 +262,8 @@ struct Report<'a> {
     sizes: &'a [Row],
 }
 
-fn row(p: &RoomPoint) -> Row {
+/// A size's row; `size` the room's, m.
+fn row(p: &RoomPoint, size: [f64; 3]) -> Row {
     let per_hour = |e: Estimate| Measured::from(e).scaled(3600.0);
     let (floor, ceiling, walls) = (Measured::from(p.floor), Measured::from(p.ceiling), Measured::from(p.walls));
     let unresolved =
@@ -201,6 +290,27 @@ fn row(p: &RoomPoint) -> Row {
         method: if p.excursions.is_some() { "excursions" } else { "plain" },
         excursions_truncated: p.excursions,
         wall_tally: p.tally.into(),
+        release: {
+            let floor = size[0] * size[1];
+            let walls = 2.0 * (size[0] + size[1]) * size[2];
+            Release {
+                particles: p.released.0,
+                kg: p.released.1,
+                floor: Share::of(p.deposited[0], p.released, Some(floor)),
+                ceiling: Share::of(p.deposited[1], p.released, Some(floor)),
+                walls: Share::of(p.deposited[2], p.released, Some(walls)),
+                exhausted: Share::of(p.exhausted, p.released, None),
+                airborne: Share::of(p.airborne, p.released, None),
+            }
+        },
+        decay_fit: p.decay_fit.map(|f| DecayFitRow {
+            beta_per_hour: per_hour(f.beta),
+            total_per_hour: per_hour(f.total),
+            window_s: f.window,
+            points: f.points,
+            z: (f.beta.value - p.beta.value) / (f.beta.error.powi(2) + p.beta.error.powi(2)).sqrt(),
+        }),
+        decay: Curve { intercept: p.decay_fit.map(|f| f.intercept), ..Curve::of(&p.decay) },
         deposited: Deposited {
             floor: p.deposited[0].0,
             floor_kg: p.deposited[0].1,
@@ -227,7 +337,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
         Flow::TurbulentRoom { friction_velocity, .. } => friction_velocity,
         _ => 0.0,
     };
-    let rows: Vec<Row> = points.iter().map(row).collect();
+    let rows: Vec<Row> = points.iter().map(|p| row(p, size)).collect();
     let ventilated = study.scene.air_exchange > 0.0;
     let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();
     match args.format {
@@ -246,7 +356,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             out!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?);
         }
         Format::Csv => {
-            let header = [
+            let mut header = vec![
                 "diameter_um",
                 "floor",
                 "floor_error",
@@ -263,18 +373,26 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "beta_per_hour",
                 "beta_error",
                 "beta_lai_nazaroff",
-                "indoor_outdoor",
-                "indoor_outdoor_error",
             ];
             // Without ventilation the indoor/outdoor columns are left out.
-            let columns = if ventilated { header.len() } else { header.len() - 2 };
+            if ventilated {
+                header.extend(["indoor_outdoor", "indoor_outdoor_error"]);
+            }
+            header.extend([
+                "beta_fitted_per_hour",
+                "beta_fitted_error",
+                "floor_share",
+                "ceiling_share",
+                "walls_share",
+                "exhausted_share",
+                "airborne_share",
+            ]);
             print_csv(
-                &header[..columns],
+                &header,
                 rows.iter().map(|r| {
-                    let io = r.indoor_outdoor.as_ref().map_or([f64::NAN; 2], |m| [m.value, m.error]);
                     let n = |m: &Measured| m.events.to_string();
                     let x = |v: f64| v.to_string();
-                    let row = [
+                    let mut row = vec![
                         x(r.diameter_um),
                         x(r.floor.value),
                         x(r.floor.error),
@@ -291,10 +409,20 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                         x(r.beta_per_hour.value),
                         x(r.beta_per_hour.error),
                         x(r.lai_nazaroff.beta_per_hour),
-                        x(io[0]),
-                        x(io[1]),
                     ];
-                    row[..columns].to_vec()
+                    if ventilated {
+                        let io = r.indoor_outdoor.as_ref().map_or([f64::NAN; 2], |m| [m.value, m.error]);
+                        row.extend([x(io[0]), x(io[1])]);
+                    }
+                    let fitted =
+                        r.decay_fit.as_ref().map_or([f64::NAN; 2], |f| [f.beta_per_hour.value, f.beta_per_hour.error]);
+                    let release = &r.release;
+                    row.extend([fitted[0], fitted[1]].map(x));
+                    row.extend(
+                        [&release.floor, &release.ceiling, &release.walls, &release.exhausted, &release.airborne]
+                            .map(|s| x(s.share)),
+                    );
+                    row
                 }),
             )?;
         }
@@ -358,11 +486,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     r.lai_nazaroff.ceiling,
                     cell(r, "walls", &r.walls),
                     r.lai_nazaroff.walls,
-                    if r.beta_per_hour.value >= 0.1 {
-                        format!("{:.3} +- {:.3}", r.beta_per_hour.value, r.beta_per_hour.error)
-                    } else {
-                        format!("{:.2e} +- {:.1e}", r.beta_per_hour.value, r.beta_per_hour.error)
-                    },
+                    rate_cell(&r.beta_per_hour),
                     r.lai_nazaroff.beta_per_hour,
                     r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour,
                     r.indoor_outdoor
@@ -383,6 +507,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 study.transient * study.scene.duration,
                 study.scene.duration
             );
+            decay_table(&rows, study.scene.air_exchange * 3600.0);
         }
     }
     if !args.no_plot {
@@ -390,6 +515,70 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
         plot_room(&args.plot, &study, &rows)?;
     }
     Ok(())
+}
+
+/// A rate per hour with its standard error: fixed-point from 0.1/h, else in e-notation.
+fn rate_cell(m: &Measured) -> String {
+    if m.value.abs() >= 0.1 {
+        format!("{:.3} +- {:.3}", m.value, m.error)
+    } else {
+        format!("{:.2e} +- {:.1e}", m.value, m.error)
+    }
+}
+
+/// The table's second part: each size read as a decay experiment (the fitted `beta` beside
+/// the study's) and where the release ends; `ach` the air changes per hour.
+fn decay_table(rows: &[Row], ach: f64) {
+    out!("");
+    out!(
+        "After the release at t = 0, as a decay experiment reads it: beta fitted = the least-squares slope of ln N(t) \
+         over the window (from the averages' start while >= {MIN_AIRBORNE} particles are airborne), less a = {ach} /h; \
+         z = (fitted - beta) / combined standard error. Then where the released particles are at the end, % of \
+         the number (for one size also of the mass), and the floor's loading per mg released."
+    );
+    out!(
+        "{:>8}  {:>20} {:>6} {:>12}  {:>7} {:>7} {:>7} {:>9} {:>8}  {:>20}",
+        "d (um)",
+        "beta fitted (1/h)",
+        "z",
+        "window (s)",
+        "floor",
+        "ceiling",
+        "walls",
+        "exhausted",
+        "airborne",
+        "floor (ug/m2 per mg)"
+    );
+    for r in rows {
+        let (fitted, z, window) = match &r.decay_fit {
+            Some(f) => (
+                rate_cell(&f.beta_per_hour),
+                format!("{:.1}", f.z),
+                format!("{:.0}-{:.0}", f.window_s[0], f.window_s[1]),
+            ),
+            None => ("no fit".to_string(), "-".to_string(), "-".to_string()),
+        };
+        let release = &r.release;
+        let pct = |s: &Share| format!("{:.1}", 100.0 * s.share);
+        out!(
+            "{:>8.3}  {:>20} {:>6} {:>12}  {:>7} {:>7} {:>7} {:>9} {:>8}  {:>20.3e}",
+            r.diameter_um,
+            fitted,
+            z,
+            window,
+            pct(&release.floor),
+            pct(&release.ceiling),
+            pct(&release.walls),
+            pct(&release.exhausted),
+            pct(&release.airborne),
+            // kg/m^2 per kg released, for 1 mg released, in ug/m^2.
+            release.floor.loading_per_m2.unwrap_or(0.0) * 1e3
+        );
+    }
+    out!(
+        "The curve counts the tracked particles, which leave the air by their own deposits: where deposition \
+         is rare it resolves beta far less well than the study's excursions (compare the errors)."
+    );
 }
 
 /// Below this deposition velocity (m/s) a model curve is not drawn: Lai & Nazaroff's ceiling
@@ -462,6 +651,54 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
             .color(1),
     );
     plot::log_log(&beta, "Loss-rate coefficient", "particle diameter (um)", "beta (1/h)", &series)?;
+    // The decay curves: the airborne share with its standard error per size, and the fitted
+    // line over its window in the same colour; the curves also as one CSV.
+    let decay = dir.join("room-decay.svg");
+    let mut series = Vec::new();
+    let mut text = String::from("diameter_um,time_s,airborne,error,count\n");
+    for (i, r) in rows.iter().enumerate() {
+        let c = &r.decay;
+        let label = format!("{} um", (r.diameter_um * 1e4).round() / 1e4);
+        let minutes: Vec<f64> = c.times_s.iter().map(|t| t / 60.0).collect();
+        series.push(
+            Series::markers(
+                format!("{label} (depo, +- 1 s.e.)"),
+                minutes.iter().copied().zip(c.airborne.iter().copied()).collect(),
+            )
+            .with_errors(c.error.clone())
+            .color(i),
+        );
+        if let (Some(f), Some(intercept)) = (&r.decay_fit, c.intercept) {
+            let k = f.total_per_hour.value / 3600.0;
+            let line = f.window_s.iter().map(|&t| (t / 60.0, (intercept - k * t).exp())).collect();
+            series.push(
+                Series::line(format!("{label}: fit, beta = {} /h", rate_cell(&f.beta_per_hour)), line)
+                    .dashed()
+                    .color(i),
+            );
+        }
+        for k in 0..c.times_s.len() {
+            text.push_str(&format!(
+                "{},{},{},{},{}\n",
+                r.diameter_um, c.times_s[k], c.airborne[k], c.error[k], c.count[k]
+            ));
+        }
+    }
+    // What ventilation alone would leave, for reference.
+    let a = study.scene.air_exchange;
+    if a > 0.0 {
+        let end = study.scene.duration;
+        series.push(
+            Series::line(
+                format!("ventilation alone, exp(-a t), a = {} /h", a * 3600.0),
+                vec![(0.0, 1.0), (end / 60.0, (-a * end).exp())],
+            )
+            .color(7),
+        );
+    }
+    plot::semilog_y(&decay, "Airborne share after a release", "time (min)", "N(t) / N(0)", &series)?;
+    let curves = dir.join("room-decay.csv");
+    std::fs::write(&curves, text).map_err(|e| format!("cannot write {}: {e}", curves.display()))?;
     // Deposition maps, one CSV per wall and size, under a header of `#` lines: rows and
     // columns along the wall's two in-plane axes in the order x, y, z.
     let walls = study.scene.geometry.walls();
@@ -504,9 +741,11 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
         }
     }
     eprintln!(
-        "figures: {} and {}; deposition maps ({}x{} cells per wall): {}/room-map-WALL-SIZEum.csv",
+        "figures: {}, {} and {}; decay curves: {}; deposition maps ({}x{} cells per wall): {}/room-map-WALL-SIZEum.csv",
         deposition.display(),
         beta.display(),
+        decay.display(),
+        curves.display(),
         MAP_BINS[0],
         MAP_BINS[1],
         dir.display()

@@ -21,6 +21,8 @@
 //! - [`run`](mod@run): all particles across cores, reproducibly, and the [`Run`]'s statistics:
 //!   mass balance, deposition velocity and loss rate with their standard errors, deposition
 //!   maps.
+//! - [`decay`]: the airborne share after a release over time, and the loss rate fitted from
+//!   it as decay experiments fit theirs.
 //! - [`excursions`]: near-wall excursions, the variance reduction for rare deposition: an
 //!   unbiased estimate of the steady deposition rate from split copies of the particles that
 //!   enter a near-wall layer (in `track` as `excursions`).
@@ -47,6 +49,7 @@
 pub mod air;
 pub mod convergence;
 pub mod correlations;
+pub mod decay;
 pub mod excursions;
 pub mod flow;
 pub mod geometry;
@@ -57,6 +60,7 @@ pub mod studies;
 mod track;
 
 pub use air::{Aerodynamics, Air};
+pub use decay::{log_linear_fit, DecayCurve, DecayFit, LogLinear};
 pub use excursions::{Excursions, Splitting};
 pub use flow::Flow;
 pub use geometry::{Geometry, Orientation, Wall};

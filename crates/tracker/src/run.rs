@@ -52,6 +52,7 @@ pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
         walls: prepared.walls,
         volume: scene.geometry.volume(),
         duration,
+        dt: scene.dt,
         window: prepared.window,
         smallest_weight,
     })
@@ -206,6 +207,8 @@ pub struct Run {
     pub volume: f64,
     /// Simulated time, s.
     pub duration: f64,
+    /// Time step, s.
+    pub dt: f64,
     /// The averaging window, s.
     pub window: [f64; 2],
     /// The smallest weight a deposit can carry (1 without excursions).
@@ -217,6 +220,12 @@ impl Run {
     #[must_use]
     pub fn particle_steps(&self) -> u64 {
         self.records.iter().map(|r| r.steps).sum()
+    }
+
+    /// Steps the run took.
+    #[must_use]
+    pub fn steps(&self) -> u64 {
+        (self.duration / self.dt).round() as u64
     }
 
     /// Counts and masses: airborne + deposited + escaped = injected, exactly.

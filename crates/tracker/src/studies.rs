@@ -17,6 +17,7 @@
 
 use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
+use crate::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
 use crate::excursions::Excursions;
 use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
@@ -160,6 +161,19 @@ pub struct RoomPoint {
     /// Deposited count and mass (kg) of the tracked particles over the whole run onto the
     /// floor, the ceiling and the vertical walls.
     pub deposited: [(usize, f64); 3],
+    /// Count and mass (kg) of the tracked particles released, exhausted by ventilation, and
+    /// still in the air at the end: with `deposited`, the whole release, exactly.
+    pub released: (usize, f64),
+    /// Exhausted, count and kg.
+    pub exhausted: (usize, f64),
+    /// In the air at the end, count and kg.
+    pub airborne: (usize, f64),
+    /// The airborne share of the release over the run ([`DECAY_INTERVALS`] intervals; see
+    /// [`crate::decay`]).
+    pub decay: DecayCurve,
+    /// The loss rate fitted to it as decay experiments fit theirs, and `beta` from it with
+    /// the air-exchange rate taken off; `None` when fewer than 3 sample times qualify.
+    pub decay_fit: Option<DecayFit>,
 }
 
 /// The deposition maps' grid.
@@ -246,6 +260,8 @@ impl RoomStudy {
                     upper_bound: (ratio + 2.0 * ratio / (a + beta.value) * beta.error).min(self.penetration),
                 }
             });
+            let decay = result.decay_curve(DECAY_INTERVALS);
+            let decay_fit = result.decay_fit(&decay, a);
             points.push(RoomPoint {
                 diameter: d,
                 floor: v(Orientation::Floor),
@@ -266,6 +282,11 @@ impl RoomStudy {
                         .iter()
                         .fold((0, 0.0), |(n, m), &w| (n + balance.deposited[w], m + balance.deposited_mass[w]))
                 }),
+                released: (balance.injected, balance.injected_mass),
+                exhausted: (balance.exhausted, balance.exhausted_mass),
+                airborne: (balance.airborne, balance.airborne_mass),
+                decay,
+                decay_fit,
             });
             progress(i + 1);
         }

@@ -1,0 +1,266 @@
+//! Decay after a release: the airborne share of the released particles over time, and the
+//! loss rate fitted from it the way chamber and house experiments fit theirs.
+//!
+//! ## The curve
+//! A run releases all its particles at `t = 0` and follows each until it deposits, is
+//! exhausted by ventilation or the run ends. The airborne share at `t` is `N(t) / N(0)`, the
+//! share of the released particles still in the air at `t` ([`Run::decay_curve`]), at the ends
+//! of steps (where ventilation takes its particles: see [`crate::Scene::air_exchange`]), with
+//! the binomial standard error `sqrt(f (1 - f) / N(0))`.
+//!
+//! Every tracked particle counts with weight 1, also with near-wall
+//! [`Excursions`](crate::Excursions): the excursions are copies that start from the tracked
+//! particles and never change them, and their weighted deposits estimate the *steady*
+//! deposition rate that the study's `beta` reports. They do not enter the curve, which is what
+//! a particle counter would read in the simulated room: the tracked particles leave the air by
+//! their own deposits and by ventilation, as in plain tracking (a test shows the same curve,
+//! particle for particle, with excursions and without). Where deposition is rare
+//! (accumulation-mode particles) the curve therefore resolves `beta` far less well than the
+//! excursions do; that is also the experimenters' lot, whose decay rates are least certain
+//! there. And where the Brownian sublayer has not filled within the run, the two differ in
+//! what they measure: the curve sees the deposition of the room as released, the excursions
+//! the steady rate (see [`crate::excursions`]).
+//!
+//! ## The fit
+//! Thatcher et al. (2002, Atmospheric Environment 36, 1811-1819) released a short burst of
+//! particles into a 14.2 m^3 room and measured the size-resolved decay of the concentration
+//! with an aerodynamic particle sizer; Howard-Reed, Wallace & Emmerich (2003, Atmospheric
+//! Environment) did the same in an occupied townhouse. In a well-mixed room without a source,
+//! `dC/dt = -(beta + a) C`, so
+//!
+//! `ln C(t) = ln C(t0) - (beta + a) (t - t0)`:
+//!
+//! the slope of `ln C` against `t` by ordinary least squares over the decay after mixing
+//! gives the total loss rate `k = beta + a` ([`log_linear_fit`]), and `beta = k - a` with the
+//! air-exchange rate `a` measured on its own (by a tracer gas in the experiments; the scene's
+//! own here, exact).
+//!
+//! **Window** ([`Run::decay_fit`]): from the start of the run's averaging window
+//! ([`crate::Scene::average_from`]; the studies' `transient`, which lets the room mix and the
+//! near-wall layers form, the counterpart of the mixing period the experiments leave out, and
+//! the same window the study's `beta` averages over) to the last sample time at which at least
+//! [`MIN_AIRBORNE`] particles are still in the air (the counterpart of stopping before the
+//! concentration nears the background: at 50 particles the count's relative error is 14 % and
+//! the bias of `ln N`, about `-1 / (2 N)`, is 1 %). At least 3 sample times, or no fit.
+//!
+//! **Error**: the delta method over the released particles, which are independent, as for
+//! every estimate the tracker reports. The slope is `b = sum_k w_k ln f_k` with
+//! `w_k = (t_k - mean t) / sum_j (t_j - mean t)^2`, and `f_k = (1 / N) sum_i A_ik` with
+//! `A_ik = 1` while particle `i` is in the air at `t_k`; so to first order
+//! `b - E b = (1 / N) sum_i psi_i` with `psi_i = sum_k w_k (A_ik - f_k) / f_k`, and
+//! `se(b) = sqrt(sum_i psi_i^2 / (N (N - 1)))`. This carries the correlation between the
+//! sample times (the same particles are counted at every one), which a fit weighting each time
+//! by its own standard error, as if independent, would miss. A test checks it against the
+//! spread of the fitted rate over independent seeds.
+
+use crate::run::{Estimate, Run};
+use crate::track::Fate;
+
+/// Intervals of a study's decay curve: 41 sample times from the release to the end of the run.
+pub const DECAY_INTERVALS: usize = 40;
+
+/// The fewest particles in the air at a sample time that the fit takes (see the module docs).
+pub const MIN_AIRBORNE: usize = 50;
+
+/// The airborne share of the released particles over time (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DecayCurve {
+    /// Sample times from the release, s, at ends of steps.
+    pub times: Vec<f64>,
+    /// Airborne share `N(t) / N(0)` at each.
+    pub airborne: Vec<f64>,
+    /// Its binomial standard error, `sqrt(f (1 - f) / N(0))`.
+    pub errors: Vec<f64>,
+    /// Particles in the air at each.
+    pub counts: Vec<usize>,
+    /// Particles released, `N(0)`.
+    pub released: usize,
+}
+
+/// `ln y = intercept - rate t`, fitted by least squares.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LogLinear {
+    /// The decay rate `-d ln y / dt`, 1/s.
+    pub rate: f64,
+    /// `ln y` at `t = 0`.
+    pub intercept: f64,
+}
+
+/// The ordinary least-squares line through `(t_k, ln y_k)`: `rate = -sum_k w_k ln y_k` with
+/// `w_k = (t_k - mean t) / sum_j (t_j - mean t)^2`, and `intercept = mean ln y + rate mean t`
+/// (the decay fit of Thatcher et al. 2002 and of chamber studies; see the module docs).
+/// `None` with fewer than two distinct times, a length mismatch, or a `y` that is not finite
+/// and positive.
+#[must_use]
+pub fn log_linear_fit(times: &[f64], values: &[f64]) -> Option<LogLinear> {
+    if times.len() != values.len() || values.iter().any(|&y| !(y.is_finite() && y > 0.0)) {
+        return None;
+    }
+    let weights = slope_weights(times)?;
+    let logs: Vec<f64> = values.iter().map(|y| y.ln()).collect();
+    let slope: f64 = weights.iter().zip(&logs).map(|(w, l)| w * l).sum();
+    let n = times.len() as f64;
+    let (mean_t, mean_l) = (times.iter().sum::<f64>() / n, logs.iter().sum::<f64>() / n);
+    Some(LogLinear { rate: -slope, intercept: mean_l - slope * mean_t })
+}
+
+/// The least-squares slope's weights `w_k = (t_k - mean t) / sum_j (t_j - mean t)^2`; `None`
+/// with fewer than two distinct times.
+fn slope_weights(times: &[f64]) -> Option<Vec<f64>> {
+    let n = times.len() as f64;
+    let mean = times.iter().sum::<f64>() / n;
+    let sxx: f64 = times.iter().map(|t| (t - mean).powi(2)).sum();
+    (times.len() >= 2 && sxx.is_finite() && sxx > 0.0).then(|| times.iter().map(|t| (t - mean) / sxx).collect())
+}
+
+/// The decay rate fitted to a [`DecayCurve`] (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DecayFit {
+    /// The total loss rate `k = beta + a`, 1/s, with the delta method's standard error; its
+    /// events are the particles that left the air within the window.
+    pub total: Estimate,
+    /// `beta = k - a`, 1/s, the same error; its events are the deposits within the window.
+    pub beta: Estimate,
+    /// `ln (N / N(0))` of the fitted line at `t = 0`.
+    pub intercept: f64,
+    /// The first and last sample times fitted, s.
+    pub window: [f64; 2],
+    /// Sample times fitted.
+    pub points: usize,
+}
+
+/// The step after which a particle is no longer in the air (`u64::MAX` while airborne at the
+/// end): it leaves within the step its record counts last, at its end when exhausted.
+fn leaves_after(fate: Fate, steps: u64) -> u64 {
+    if fate == Fate::Airborne {
+        u64::MAX
+    } else {
+        steps
+    }
+}
+
+impl Run {
+    /// The airborne share at `intervals + 1` times evenly spread (to whole steps) from the
+    /// release to the end of the run (see the [module docs](crate::decay)).
+    #[must_use]
+    pub fn decay_curve(&self, intervals: usize) -> DecayCurve {
+        let steps = self.steps();
+        let intervals = intervals.max(1);
+        let sample_steps: Vec<u64> =
+            (0..=intervals).map(|k| (k as u64 * steps + intervals as u64 / 2) / intervals as u64).collect();
+        let released = self.records.len();
+        let mut counts = vec![0usize; sample_steps.len()];
+        for r in &self.records {
+            let leaves = leaves_after(r.fate, r.steps);
+            for (c, &n) in counts.iter_mut().zip(&sample_steps) {
+                *c += usize::from(leaves > n);
+            }
+        }
+        let n = released.max(1) as f64;
+        let airborne: Vec<f64> = counts.iter().map(|&c| c as f64 / n).collect();
+        DecayCurve {
+            times: sample_steps.iter().map(|&s| s as f64 * self.dt).collect(),
+            errors: airborne.iter().map(|f| (f * (1.0 - f) / n).sqrt()).collect(),
+            airborne,
+            counts,
+            released,
+        }
+    }
+
+    /// The loss rate fitted to `curve` (this run's, from [`Run::decay_curve`]) over the sample
+    /// times from the averaging window's start on while at least [`MIN_AIRBORNE`] particles
+    /// are in the air, with the delta method's standard error over the particles, and `beta`
+    /// with the air-exchange rate `air_exchange` (1/s) taken off (see the
+    /// [module docs](crate::decay)). `None` with fewer than 3 such times.
+    #[must_use]
+    pub fn decay_fit(&self, curve: &DecayCurve, air_exchange: f64) -> Option<DecayFit> {
+        let from = self.window[0] * (1.0 - 1e-12);
+        let mut chosen: Vec<usize> = Vec::new();
+        for (k, (&t, &c)) in curve.times.iter().zip(&curve.counts).enumerate() {
+            if t >= from {
+                if c < MIN_AIRBORNE {
+                    break;
+                }
+                chosen.push(k);
+            }
+        }
+        if chosen.len() < 3 {
+            return None;
+        }
+        let times: Vec<f64> = chosen.iter().map(|&k| curve.times[k]).collect();
+        let shares: Vec<f64> = chosen.iter().map(|&k| curve.airborne[k]).collect();
+        let fit = log_linear_fit(&times, &shares)?;
+        let weights = slope_weights(&times)?;
+        let sample_steps: Vec<u64> = times.iter().map(|t| (t / self.dt).round() as u64).collect();
+        let (first, last) = (sample_steps[0], sample_steps[sample_steps.len() - 1]);
+        // Each particle's influence on the slope, psi_i = sum_k w_k (A_ik - f_k) / f_k.
+        let (mut spread, mut left, mut deposited) = (0.0, 0usize, 0usize);
+        for r in &self.records {
+            let leaves = leaves_after(r.fate, r.steps);
+            let psi: f64 = weights
+                .iter()
+                .zip(&shares)
+                .zip(&sample_steps)
+                .map(|((w, f), &n)| w * (f64::from(u8::from(leaves > n)) - f) / f)
+                .sum();
+            spread += psi * psi;
+            if leaves > first && leaves <= last {
+                left += 1;
+                deposited += usize::from(matches!(r.fate, Fate::Deposited(_)));
+            }
+        }
+        let n = self.records.len() as f64;
+        let error = (spread / (n * (n - 1.0))).sqrt();
+        // With no departure at all, the rate three would give over the window (the rule of
+        // three, as for deposits), else two standard errors above.
+        let bound = |value: f64, events: usize| {
+            if events == 0 {
+                value + 3.0 / (curve.counts[chosen[0]] as f64 * (times[times.len() - 1] - times[0]))
+            } else {
+                value + 2.0 * error
+            }
+        };
+        let total = Estimate { value: fit.rate, error, events: left, upper_bound: bound(fit.rate, left) };
+        let beta_value = fit.rate - air_exchange;
+        let beta = Estimate { value: beta_value, error, events: deposited, upper_bound: bound(beta_value, deposited) };
+        Some(DecayFit {
+            total,
+            beta,
+            intercept: fit.intercept,
+            window: [times[0], times[times.len() - 1]],
+            points: times.len(),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_exact_exponential_gives_its_rate_exactly() {
+        let times = [0.0f64, 60.0, 120.0, 300.0, 600.0];
+        let values: Vec<f64> = times.iter().map(|t| 0.8 * (-2.5e-4 * t).exp()).collect();
+        let fit = log_linear_fit(&times, &values).unwrap();
+        assert!((fit.rate - 2.5e-4).abs() < 1e-15, "{fit:?}");
+        assert!((fit.intercept - 0.8f64.ln()).abs() < 1e-12, "{fit:?}");
+    }
+
+    /// By hand: `ln y = 0, -1, -3` at `t = 0, 1, 2`; mean t 1, mean ln y -4/3; the slope is
+    /// `((-1)(4/3) + 0 + (1)(-5/3)) / 2 = -3/2`, the intercept `-4/3 + 3/2 = 1/6`.
+    #[test]
+    fn the_fit_is_least_squares_in_ln_y() {
+        let e = std::f64::consts::E;
+        let fit = log_linear_fit(&[0.0, 1.0, 2.0], &[1.0, 1.0 / e, 1.0 / e.powi(3)]).unwrap();
+        assert!((fit.rate - 1.5).abs() < 1e-14, "{fit:?}");
+        assert!((fit.intercept - 1.0 / 6.0).abs() < 1e-14, "{fit:?}");
+    }
+
+    #[test]
+    fn a_fit_needs_two_times_and_positive_values() {
+        assert!(log_linear_fit(&[1.0], &[0.5]).is_none());
+        assert!(log_linear_fit(&[1.0, 1.0], &[0.5, 0.4]).is_none());
+        assert!(log_linear_fit(&[0.0, 1.0], &[0.5, 0.0]).is_none());
+        assert!(log_linear_fit(&[0.0, 1.0], &[0.5]).is_none());
+    }
+}
