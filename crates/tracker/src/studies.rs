@@ -20,7 +20,7 @@ use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, woo
 use crate::excursions::Excursions;
 use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
-use crate::run::{run, run_more, Estimate, Run};
+use crate::run::{run, run_more, Balance, Estimate, Run};
 use crate::scene::{Injection, Scene, SceneError, SizeDistribution};
 use crate::track::WallTally;
 
@@ -150,6 +150,9 @@ pub struct RoomPoint {
     /// Deposited count and mass (kg) of the tracked particles over the whole run onto the
     /// floor, the ceiling and the vertical walls.
     pub deposited: [(usize, f64); 3],
+    /// Where the tracked particles are at the end of the run (with ventilation, the exhausted
+    /// ones too): the mass balance a size distribution's is summed from.
+    pub balance: Balance,
 }
 
 /// The deposition maps' grid.
@@ -256,6 +259,7 @@ impl RoomStudy {
                         .iter()
                         .fold((0, 0.0), |(n, m), &w| (n + balance.deposited[w], m + balance.deposited_mass[w]))
                 }),
+                balance,
             });
             progress(i + 1);
         }
