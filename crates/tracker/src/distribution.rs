@@ -9,9 +9,10 @@
 //!
 //! ## Quadrature
 //! A room study tracks one size at a time, so a distribution is cut into bins in `ln d`
-//! ([`Distribution::bins`]): a mode's bins span [`DEFAULT_BINS`] equal steps in `ln d` from
-//! its count median over `sigma_g^3` to its mass median times `sigma_g^3` (more than 99.8 % of
-//! its number and of its mass), or the range given; a class list's bins are its classes. Each
+//! ([`Distribution::bins`]): the modes of one particle density share [`DEFAULT_BINS`] equal
+//! steps in `ln d` from their smallest count median over `sigma_g^3` to their largest mass
+//! median times `sigma_g^3` (more than 99.8 % of each mode's number and of its mass), or
+//! the range given; a class list's bins are its classes. Each
 //! bin's number and mass are integrated exactly (for a mode from its lognormal distribution
 //! function; in a class, number or mass as given, spread uniformly in `ln d`), and the bin's
 //! particles all share the fate of one run at its geometric midpoint `sqrt(lower upper)`:
@@ -293,8 +294,8 @@ impl SizeClass {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Distribution {
     /// Lognormal modes, cut into `bins` bins in `ln d` per density over `range` (m; by
-    /// default each mode's count median over `sigma_g^3` to the largest mass median times
-    /// `sigma_g^3`).
+    /// default from the density's modes' smallest count median over `sigma_g^3` to their
+    /// largest mass median times `sigma_g^3`).
     Modes { modes: Vec<Mode>, bins: usize, range: Option<[f64; 2]> },
     /// Measured size classes, each its own bin.
     Classes(Vec<SizeClass>),
@@ -452,29 +453,32 @@ impl Distribution {
                         }
                     })
                     .collect();
-                let [lo, hi] = range.unwrap_or_else(|| {
-                    let lo =
-                        modes.iter().map(|m| m.count_median() / m.geometric_sd.powi(3)).fold(f64::INFINITY, f64::min);
-                    let hi = modes.iter().map(|m| m.mass_median() * m.geometric_sd.powi(3)).fold(0.0, f64::max);
-                    // A monodisperse mode (sigma_g = 1) still needs a bin of some width.
-                    if hi / lo < 1.0001 {
-                        [lo / 1.0001, hi * 1.0001]
-                    } else {
-                        [lo, hi]
-                    }
-                });
-                let edges: Vec<f64> = (0..=*count).map(|i| lo * (hi / lo).powf(i as f64 / *count as f64)).collect();
                 let mut densities: Vec<f64> = Vec::new();
                 for m in modes {
                     if !densities.contains(&m.density) {
                         densities.push(m.density);
                     }
                 }
+                // Each density's bins span its own modes, unless a range is given.
+                let edges = |rho: f64| -> Vec<f64> {
+                    let [lo, hi] = range.unwrap_or_else(|| {
+                        let own = || modes.iter().filter(|m| m.density == rho);
+                        let lo = own().map(|m| m.count_median() / m.geometric_sd.powi(3)).fold(f64::INFINITY, f64::min);
+                        let hi = own().map(|m| m.mass_median() * m.geometric_sd.powi(3)).fold(0.0, f64::max);
+                        // A monodisperse mode (sigma_g = 1) still needs a bin of some width.
+                        if hi / lo < 1.0001 {
+                            [lo / 1.0001, hi * 1.0001]
+                        } else {
+                            [lo, hi]
+                        }
+                    });
+                    (0..=*count).map(|i| lo * (hi / lo).powf(i as f64 / *count as f64)).collect()
+                };
                 let mut bins = Vec::new();
                 let mut inside = 0.0;
                 for &rho in &densities {
                     let cut = cuts(rho);
-                    for w in edges.windows(2) {
+                    for w in edges(rho).windows(2) {
                         let (a, b) = (w[0], w[1]);
                         let mut bin = Bin {
                             lower: a,
