@@ -777,3 +777,37 @@ fn size_distribution_errors_name_the_file_line_and_key() {
     std::fs::write(dir.join("header.csv"), "size,mass\n1e-6,1e-9\n").unwrap();
     check("header.toml", "[particles]\nsize_bins = \"header.csv\"\n", "line 2: `particles.size_bins`");
 }
+
+/// The shipped size-distribution examples parse: the modes of `examples/room-pm.toml` and the
+/// classes of `examples/size-classes.csv`, in zero-duration runs.
+#[test]
+fn example_size_distributions_parse() {
+    let dir = scratch("examples-pm");
+    let text = std::fs::read_to_string("examples/room-pm.toml").unwrap().replace("duration = 1800.0", "duration = 0.0");
+    let modes = dir.join("room-pm.toml");
+    std::fs::write(&modes, text).unwrap();
+    let report = ok_json(&["room", modes.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    assert_eq!(report["distribution"]["bins"].as_array().unwrap().len(), 20);
+    let classes = dir.join("classes.toml");
+    let csv = std::fs::canonicalize("examples/size-classes.csv").unwrap();
+    std::fs::write(&classes, format!("[particles]\nsize_bins = {:?}\n[run]\nduration = 0.0\n", csv.to_str().unwrap()))
+        .unwrap();
+    let report = ok_json(&["room", classes.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    let d = &report["distribution"];
+    assert_eq!(d["bins"].as_array().unwrap().len(), 6);
+    assert!((d["all"]["injected"].as_f64().unwrap() / (20e-9 * 30.0) - 1.0).abs() < 1e-9, "{d}");
+}
+
+/// A distribution whose bins reach sizes the room cannot hold names the distribution, not a
+/// list of diameters the scene does not have.
+#[test]
+fn a_distribution_too_coarse_for_the_room_names_its_modes() {
+    let dir = scratch("coarse-distribution");
+    let scene = dir.join("coarse.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[[particles.modes]]\nmass_median = 0.1\ngeometric_sd = 2.0\n",
+    )
+    .unwrap();
+    user_error(&["room", scene.to_str().unwrap(), "--no-plot"], "`particles.modes` = ");
+}

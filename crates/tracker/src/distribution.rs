@@ -693,7 +693,17 @@ impl DistributionStudy {
                 ..self.study.clone()
             };
             let done = points.len();
-            points.extend(study.run(|k| progress(done + k))?);
+            points.extend(study.run(|k| progress(done + k)).map_err(|mut e| {
+                // The sizes are the distribution's, not a list of diameters.
+                if e.field == "particles.diameters" {
+                    e.field = match self.distribution {
+                        Distribution::Modes { .. } => "particles.modes",
+                        Distribution::Classes(_) => "particles.size_bins",
+                    }
+                    .into();
+                }
+                e
+            })?);
             start = end;
         }
         let fates: Vec<Fates> = points.iter().map(Fates::from).collect();
