@@ -29,8 +29,10 @@ pub struct Split {
     pub airborne: Part,
     pub exhausted: Part,
     pub escaped: Part,
-    /// The loss rate of the mass while its size distribution is the injected one.
+    /// The loss rate of the mass while its size distribution is the injected one...
     pub beta_per_hour: Measured,
+    /// ... over this share of the mass (the bins whose runs measured a beta).
+    pub beta_mass_share: f64,
 }
 
 /// One bin: its range, its run's diameter, its number and mass, and the shares of its run's
@@ -91,6 +93,7 @@ impl DistributionReport {
             exhausted: part(s.exhausted),
             escaped: part(s.escaped),
             beta_per_hour: Measured::from(s.beta).scaled(3600.0),
+            beta_mass_share: s.beta_share,
         };
         let bins = balance
             .bins
@@ -177,6 +180,18 @@ impl DistributionReport {
                 format!("{:.3} +- {:.3}", s.beta_per_hour.value, s.beta_per_hour.error)
             );
         }
+        let partial: Vec<String> = self
+            .classes()
+            .iter()
+            .filter(|(_, s)| s.beta_mass_share < 1.0)
+            .map(|(name, s)| format!("{name} {:.1} %", 100.0 * s.beta_mass_share))
+            .collect();
+        if !partial.is_empty() {
+            out!(
+                "beta of mass over part of the mass only ({}): the rest is in bins whose particles all settled before the averaging window, with no beta to measure.",
+                partial.join(", ")
+            );
+        }
         out!(
             "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
              one run at its midpoint (?: a bin without neighbours). Mass outside the bins, left out: {:.3e}. {PM_DEFINITION}. \
@@ -192,7 +207,7 @@ impl DistributionReport {
         for p in parts {
             header.extend([p.to_string(), format!("{p}_error"), format!("{p}_quadrature")]);
         }
-        header.extend(["beta_per_hour".to_string(), "beta_error".to_string()]);
+        header.extend(["beta_per_hour".to_string(), "beta_error".to_string(), "beta_mass_share".to_string()]);
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
         print_csv(
             &header,
@@ -205,14 +220,18 @@ impl DistributionReport {
                         p.quadrature.map_or(String::new(), |q| q.to_string()),
                     ]);
                 }
-                row.extend([s.beta_per_hour.value.to_string(), s.beta_per_hour.error.to_string()]);
+                row.extend([
+                    s.beta_per_hour.value.to_string(),
+                    s.beta_per_hour.error.to_string(),
+                    s.beta_mass_share.to_string(),
+                ]);
                 row
             }),
         )
     }
 
     /// The figure: per bin, the mass per unit `ln d` injected and where it went, against the
-    /// bin's diameter; one set of curves per density.
+    /// bin's diameter; one set of curves per density (the first solid, the others dashed).
     pub fn plot(&self, path: &Path) -> Result<(), Error> {
         let mut series = Vec::new();
         let mut densities: Vec<f64> = Vec::new();
@@ -233,12 +252,22 @@ impl DistributionReport {
             let per_ln_d = |pick: &dyn Fn(&BinRow) -> f64| -> Vec<(f64, f64)> {
                 bins.iter().map(|b| (b.diameter_um, b.mass * pick(b) / (b.upper_um / b.lower_um).ln())).collect()
             };
-            series.push(Series::line(label("injected"), per_ln_d(&|_| 1.0)).color(7));
-            series.push(Series::markers(label("floor"), per_ln_d(&|b| b.floor)).color(0));
-            series.push(Series::markers(label("ceiling and walls"), per_ln_d(&|b| b.ceiling + b.walls)).color(2));
-            series.push(Series::markers(label("airborne at the end"), per_ln_d(&|b| b.airborne)).color(1));
+            // The first density's curves solid, the others' dashed, each fate in its colour.
+            let first = rho == densities[0];
+            let curve = |name: &str, points: Vec<(f64, f64)>, color: usize| {
+                let s = Series::line(label(name), points).color(color);
+                if first {
+                    s
+                } else {
+                    s.dashed()
+                }
+            };
+            series.push(curve("injected", per_ln_d(&|_| 1.0), 7));
+            series.push(curve("floor", per_ln_d(&|b| b.floor), 0));
+            series.push(curve("ceiling and walls", per_ln_d(&|b| b.ceiling + b.walls), 2));
+            series.push(curve("airborne at the end", per_ln_d(&|b| b.airborne), 1));
             if bins.iter().any(|b| b.exhausted > 0.0) {
-                series.push(Series::markers(label("exhausted"), per_ln_d(&|b| b.exhausted)).color(3));
+                series.push(curve("exhausted", per_ln_d(&|b| b.exhausted), 3));
             }
         }
         let y =

@@ -576,8 +576,13 @@ pub struct MassSplit {
     /// The loss rate of the mass, 1/s: `sum_i M_i beta_i / sum_i M_i`, the rate at which
     /// deposition removes airborne mass while its size distribution is the injected one
     /// (deposition then takes the fast-depositing sizes first and the rate falls). Its
-    /// `events` are the runs' together; its error carried from theirs.
+    /// `events` are the runs' together; its error carried from theirs. Only over the bins
+    /// whose run measured a `beta` (see [`MassSplit::beta_share`]).
     pub beta: Estimate,
+    /// The share of the mass whose bins' runs measured a `beta`: a run whose particles all
+    /// settled before its averaging window began has none (coarse particles in a short
+    /// room), and its mass is left out of [`MassSplit::beta`].
+    pub beta_share: f64,
 }
 
 impl MassSplit {
@@ -645,13 +650,16 @@ pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
         p
     };
     let injected: f64 = weights.iter().sum();
-    let (mut rate, mut variance, mut events) = (0.0, 0.0, 0);
-    for (w, f) in weights.iter().zip(fates) {
+    // Over the bins whose run measured a beta: a run whose particles all deposited before its
+    // averaging window has no exposure to measure it by (its upper bound is infinite).
+    let (mut rate, mut variance, mut events, mut measured) = (0.0, 0.0, 0, 0.0);
+    for (w, f) in weights.iter().zip(fates).filter(|(_, f)| f.beta.upper_bound.is_finite()) {
         rate += w * f.beta.value;
         variance += (w * f.beta.error).powi(2);
         events += f.beta.events;
+        measured += w;
     }
-    let (value, error) = if injected > 0.0 { (rate / injected, variance.sqrt() / injected) } else { (0.0, 0.0) };
+    let (value, error) = if measured > 0.0 { (rate / measured, variance.sqrt() / measured) } else { (0.0, 0.0) };
     MassSplit {
         injected,
         deposited: [portion(0), portion(1), portion(2)],
@@ -659,11 +667,33 @@ pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
         exhausted: portion(4),
         escaped: portion(5),
         beta: Estimate { value, error, events, upper_bound: value + 2.0 * error },
+        beta_share: if injected > 0.0 { measured / injected } else { 0.0 },
     }
 }
 
 /// A room study of a size distribution: the room study's runs at the distribution's bins
 /// (one study per particle density), their fates weighted by the bins' mass.
+///
+/// ```
+/// use depo_tracker::distribution::{Amount, Distribution, DistributionStudy, Median, Mode};
+/// use depo_tracker::studies::RoomStudy;
+///
+/// // 20 ug/m^3 of a mode of mass median 3 um, in 6 bins; a short run of few particles.
+/// let mode = Mode {
+///     median: Median::Mass(3e-6),
+///     geometric_sd: 2.0,
+///     density: 1500.0,
+///     amount: Amount::MassConcentration(20e-9),
+/// };
+/// let mut study = RoomStudy { count: 20, target_error: None, excursions: false, ..RoomStudy::default() };
+/// study.scene.duration = 10.0;
+/// let distribution = Distribution::Modes { modes: vec![mode], bins: 6, range: None };
+/// let (_, balance) = DistributionStudy { study, distribution }.run(|_| {}).unwrap();
+/// let floor = balance.all.deposited[0]; // kg/m^3 of the room's air, with its errors
+/// let pm2_5 = &balance.pm[0];
+/// assert!((balance.all.accounted() / balance.all.injected - 1.0).abs() < 1e-12);
+/// assert!(pm2_5.injected < balance.all.injected && floor.value >= 0.0);
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct DistributionStudy {
     /// The room, its runs and their resolution; its `diameters` and `density` are the bins'.
@@ -829,8 +859,15 @@ mod tests {
         assert!((split.exhausted.value - 0.75).abs() < 1e-12);
         assert!((split.accounted() - split.injected).abs() <= 1e-15 * split.injected);
         assert!((split.beta.value - 7e-4 / 3.0).abs() < 1e-18);
+        assert_eq!(split.beta_share, 1.0);
         // One bin alone has no neighbour to bound its quadrature by.
         assert!(integrate(&bins[..1], &runs[..1], &[2.0]).deposited[0].quadrature.is_nan());
+        // A run that measured no beta (all settled before its window) is left out of the
+        // mass's beta, and says how much mass that is.
+        let mut unmeasured = runs;
+        unmeasured[1].beta = Estimate { value: 0.0, error: 0.0, events: 0, upper_bound: f64::INFINITY };
+        let split = integrate(&bins, &unmeasured, &[2.0, 1.0]);
+        assert!((split.beta.value - 1e-4).abs() < 1e-18 && (split.beta_share - 2.0 / 3.0).abs() < 1e-15);
     }
 
     /// Modes mixing shares of number and of mass, or shares and concentrations, are errors
