@@ -26,8 +26,9 @@
 //! its neighbours' midpoints, so where `f` is monotonic across it, `f` within the bin stays
 //! within half the step to the neighbour on either side: the bound reported is
 //! `sum_i M_i max_j |f_j - f_i| / 2` over the bin's neighbours `j` (of the same density). It is
-//! a first-order bound (where `f` is smooth the midpoint error is second order, smaller), and
-//! halving the bins' width halves it.
+//! a first-order bound (where `f` is smooth the midpoint error is second order, far smaller:
+//! 0.0013 under a bound of 0.155 in the test on 8 bins), and halving the bins' width halves
+//! it. A fate no particle of a bin's run took counts 0 with no error for that bin.
 //!
 //! ## PM2.5 and PM10
 //! PM2.5 and PM10 are the mass of particles of aerodynamic diameter below 2.5 um and 10 um.
@@ -868,6 +869,42 @@ mod tests {
         unmeasured[1].beta = Estimate { value: 0.0, error: 0.0, events: 0, upper_bound: f64::INFINITY };
         let split = integrate(&bins, &unmeasured, &[2.0, 1.0]);
         assert!((split.beta.value - 1e-4).abs() < 1e-18 && (split.beta_share - 2.0 / 3.0).abs() < 1e-15);
+    }
+
+    /// The quadrature bound holds: a smooth settling-like share `f(d) = 1 - exp(-(d / 3 um)^2)`
+    /// (as counts of a million particles per bin) over a mode of MMD 3 um, sigma_g 2:
+    /// integrated on 8 and 16 bins, the error against 4000 bins is within the bound, and the
+    /// bound halves with the bins' width.
+    #[test]
+    fn quadrature_error_is_within_its_bound_and_halves_with_the_bins() {
+        let mode = Mode {
+            median: Median::Mass(3e-6),
+            geometric_sd: 2.0,
+            density: 1000.0,
+            amount: Amount::MassConcentration(1.0),
+        };
+        let share = |d: f64| 1.0 - (-(d / 3e-6).powi(2)).exp();
+        let floor = |bins: usize| {
+            let distribution = Distribution::Modes { modes: vec![mode], bins, range: Some([0.3e-6, 30e-6]) };
+            let (bins, _) = distribution.bins(&Air::standard()).unwrap();
+            let n = 1_000_000;
+            let runs: Vec<Fates> = bins
+                .iter()
+                .map(|b| {
+                    let k = (share(b.diameter) * n as f64).round() as usize;
+                    fates(n, [k, 0, 0], n - k, 0, 1e-4)
+                })
+                .collect();
+            let mass: Vec<f64> = bins.iter().map(|b| b.mass).collect();
+            integrate(&bins, &runs, &mass).deposited[0]
+        };
+        let exact = floor(4000).value;
+        let (coarse, fine) = (floor(8), floor(16));
+        for p in [coarse, fine] {
+            assert!((p.value - exact).abs() <= p.quadrature, "{p:?} against {exact}");
+        }
+        let ratio = fine.quadrature / coarse.quadrature;
+        assert!((0.4..0.6).contains(&ratio), "{ratio}");
     }
 
     /// Modes mixing shares of number and of mass, or shares and concentrations, are errors
