@@ -95,6 +95,9 @@ impl DistributionReport {
             beta_per_hour: Measured::from(s.beta).scaled(3600.0),
             beta_mass_share: s.beta_share,
         };
+        // Numbers per room, or as shares of the number in the bins.
+        let total_number: f64 = balance.bins.iter().map(|(b, _)| b.number).sum();
+        let number_scale = if balance.absolute { volume } else { 1.0 / total_number.max(f64::MIN_POSITIVE) };
         let bins = balance
             .bins
             .iter()
@@ -105,7 +108,7 @@ impl DistributionReport {
                     upper_um: b.upper * 1e6,
                     diameter_um: b.diameter * 1e6,
                     density: b.density,
-                    number: b.number * if balance.absolute { volume } else { 1.0 },
+                    number: b.number * number_scale,
                     mass: b.mass * scale,
                     pm2_5_mass: b.pm_mass[0] * scale,
                     pm10_mass: b.pm_mass[1] * scale,

@@ -807,6 +807,22 @@ mod tests {
         assert!(bins.iter().all(|b| b.pm_mass == [b.mass, b.mass]));
     }
 
+    /// PM2.5 and PM10 of a unit-density mode (aerodynamic diameter = geometric) by hand: MMD
+    /// 3 um, sigma_g 2: `Phi(ln(2.5 / 3) / ln 2)` = 39.6262 % and `Phi(ln(10 / 3) / ln 2)` =
+    /// 95.8803 % of the mass, whichever bin the cuts fall in.
+    #[test]
+    fn pm_shares_of_a_mode_match_hand_values() {
+        let mode =
+            Mode { median: Median::Mass(3e-6), geometric_sd: 2.0, density: 1000.0, amount: Amount::MassShare(1.0) };
+        for bins in [1, 5, 7] {
+            let distribution = Distribution::Modes { modes: vec![mode], bins, range: Some([1e-9, 1e-3]) };
+            let (bins, outside) = distribution.bins(&Air::standard()).unwrap();
+            assert!(outside < 1e-12);
+            let pm = |k: usize| bins.iter().map(|b| b.pm_mass[k]).sum::<f64>();
+            assert!((pm(0) - 0.396_262).abs() < 1e-6 && (pm(1) - 0.958_803).abs() < 1e-6, "{} {}", pm(0), pm(1));
+        }
+    }
+
     /// A size class of mass uniform in `ln d` from 1 to 4 um: a cut at 2 um takes half its
     /// mass; given by number instead, `(2^3 - 1) / (4^3 - 1) = 7 / 63` of it.
     #[test]
