@@ -703,3 +703,176 @@ fn progress_shows_on_the_terminal_when_stdout_is_piped() {
         String::from_utf8_lossy(&captured.stderr)
     );
 }
+
+/// A size distribution in a scene: its mass balance per surface, exhausted and airborne sums
+/// to the injected mass, for all of it and for PM10 and PM2.5; the CSV holds the same; the
+/// figure is written.
+#[test]
+fn room_reports_a_size_distribution_mass_balance() {
+    let dir = scratch("distribution");
+    let scene = dir.join("modes.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n\
+         [[particles.modes]]\ncount_median = 0.1e-6\ngeometric_sd = 1.8\nmass_concentration = 10e-9\ndensity = 1500.0\n\
+         [[particles.modes]]\nmass_median = 8e-6\ngeometric_sd = 1.8\nmass_concentration = 30e-9\n\
+         [particles]\ncount = 60\ntarget_error = 0.0\nbins = 4\ndensity = 2500.0\n\
+         [ventilation]\nair_changes_per_hour = 4.0\n[run]\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let plots = dir.join("figures");
+    let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--plot", plots.to_str().unwrap()]);
+    let d = &report["distribution"];
+    assert_eq!(d["mass_unit"], "kg");
+    // Two densities (1500 given, 2500 from particles.density), four bins each; the per-size
+    // rows are the bins' runs.
+    let bins = d["bins"].as_array().unwrap();
+    assert_eq!(bins.len(), 8);
+    assert_eq!(report["sizes"].as_array().unwrap().len(), 8);
+    assert_eq!(bins[4]["density"], 2500.0);
+    // 40 ug/m^3 in a 1 m^3 room, in the bins or outside them.
+    let injected = d["all"]["injected"].as_f64().unwrap();
+    assert!(((injected + d["outside_bins"].as_f64().unwrap()) / 40e-9 - 1.0).abs() < 1e-9, "{injected}");
+    for class in ["all", "pm10", "pm2_5"] {
+        let s = &d[class];
+        let parts: f64 = ["floor", "ceiling", "walls", "airborne", "exhausted", "escaped"]
+            .iter()
+            .map(|p| s[p]["value"].as_f64().unwrap())
+            .sum();
+        let injected = s["injected"].as_f64().unwrap();
+        assert!((parts - injected).abs() <= 1e-12 * injected, "{class}: {parts} against {injected}");
+    }
+    assert!(d["pm2_5"]["injected"].as_f64() < d["pm10"]["injected"].as_f64());
+    assert!(d["all"]["exhausted"]["value"].as_f64().unwrap() > 0.0);
+    let figure = std::fs::read_to_string(plots.join("room-distribution.svg")).unwrap();
+    assert!(legend_y(&figure, "injected (1500 kg/m^3)") > 500.0);
+    // The CSV: one row per class, the same numbers.
+    let csv =
+        String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]).stdout).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 4, "{csv}");
+    assert!(lines[0].starts_with("class,injected,floor,floor_error,floor_quadrature,"), "{csv}");
+    let floor: f64 = lines[1].split(',').nth(2).unwrap().parse().unwrap();
+    assert_eq!(floor, d["all"]["floor"]["value"].as_f64().unwrap());
+    assert!(lines[3].starts_with("PM2.5,"));
+    let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
+    assert!(table.contains("Size distribution: 8 bins (density 1500, 2500 kg/m^3)"), "{table}");
+}
+
+/// Measured size classes from a CSV file beside the scene: by edges, or by midpoints with
+/// edges at the geometric means between them.
+#[test]
+fn room_reads_size_classes_from_a_csv_file() {
+    let dir = scratch("classes");
+    let run = |csv: &str| {
+        std::fs::write(dir.join("classes.csv"), csv).unwrap();
+        let scene = dir.join("classes.toml");
+        std::fs::write(
+            &scene,
+            "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\nsize_bins = \"classes.csv\"\ncount = 30\ntarget_error = 0.0\n\
+             [run]\nduration = 30.0\nexcursions = false\n",
+        )
+        .unwrap();
+        ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"])["distribution"].clone()
+    };
+    let edges = run("# a measured distribution\nlower_um,upper_um,mass\n0.5,1.0,2e-9\n1.0,4.0,6e-9\n4.0,16.0,8e-9\n");
+    let bins = edges["bins"].as_array().unwrap();
+    assert_eq!(bins.len(), 3);
+    assert_eq!(bins[1]["diameter_um"], 2.0);
+    assert!((edges["all"]["injected"].as_f64().unwrap() / 16e-9 - 1.0).abs() < 1e-12);
+    // 16 um spheres of 1000 kg/m^3 are 16 um aerodynamic: PM10 takes the class's mass from
+    // 4 to 10 um, ln(10 / 4) / ln(16 / 4) of it.
+    let pm10 = 2e-9 + 6e-9 + 8e-9 * (10.0f64 / 4.0).ln() / 4f64.ln();
+    assert!((edges["pm10"]["injected"].as_f64().unwrap() / pm10 - 1.0).abs() < 1e-6, "{}", edges["pm10"]);
+    let mids = run("diameter_um,number\n1,1e6\n4,1e5\n16,1e3\n");
+    let bins = mids["bins"].as_array().unwrap();
+    for (bin, (lo, hi)) in bins.iter().zip([(0.5, 2.0), (2.0, 8.0), (8.0, 32.0)]) {
+        assert!(
+            (bin["lower_um"].as_f64().unwrap() - lo).abs() < 1e-12
+                && (bin["upper_um"].as_f64().unwrap() - hi).abs() < 1e-12,
+            "{bin}"
+        );
+    }
+    assert_eq!(bins[0]["number"], 1e6);
+}
+
+/// A size distribution's errors name the file, the line and the key.
+#[test]
+fn size_distribution_errors_name_the_file_line_and_key() {
+    let dir = scratch("distribution-errors");
+    let check = |name: &str, text: &str, what: &str| {
+        let scene = dir.join(name);
+        std::fs::write(&scene, text).unwrap();
+        user_error(&["room", scene.to_str().unwrap(), "--no-plot"], what);
+    };
+    let mode = "[[particles.modes]]\ncount_median = 1e-6\ngeometric_sd = 2.0\n";
+    check(
+        "unknown.toml",
+        &format!("{mode}[[particles.modes]]\ncount_median = 1e-6\ngsd = 2.0\n"),
+        "line 6: unknown field `gsd`",
+    );
+    check(
+        "narrow.toml",
+        &format!("{mode}[[particles.modes]]\ncount_median = 1e-6\ngeometric_sd = 0.5\n"),
+        "narrow.toml line 4: `particles.modes[1].geometric_sd` = 0.5 must be finite and >= 1",
+    );
+    check(
+        "medians.toml",
+        "[[particles.modes]]\ncount_median = 1e-6\nmass_median = 3e-6\ngeometric_sd = 2.0\n",
+        "medians.toml line 1: `particles.modes[0].count_median` or `particles.modes[0].mass_median`, not both",
+    );
+    check(
+        "mixed.toml",
+        &format!("{mode}[[particles.modes]]\nmass_median = 5e-6\ngeometric_sd = 2.0\n"),
+        "mixed.toml line 1: `particles.modes`: shares must all be of number or all of mass",
+    );
+    check(
+        "both.toml",
+        &format!("[particles]\ndiameters = [1e-6]\n{mode}"),
+        "line 3: give `particles.diameters` or a size distribution, not both",
+    );
+    check("bins.toml", "[particles]\nbins = 4\n", "bins.toml line 2: `particles.bins` needs a size distribution");
+    check("zero.toml", &format!("[particles]\nbins = 0\n{mode}"), "line 2: `particles.bins` = 0 must be at least 1");
+    std::fs::write(dir.join("bad.csv"), "lower,upper,mass\n1e-6,2e-6,1e-9\n3e-6,2e-6,1e-9\n").unwrap();
+    check(
+        "csv.toml",
+        "[particles]\nsize_bins = \"bad.csv\"\n",
+        "bad.csv line 3: upper = 0.000002 must be finite and above the lower edge",
+    );
+    std::fs::write(dir.join("header.csv"), "size,mass\n1e-6,1e-9\n").unwrap();
+    check("header.toml", "[particles]\nsize_bins = \"header.csv\"\n", "line 2: `particles.size_bins`");
+}
+
+/// The shipped size-distribution examples parse: the modes of `examples/room-pm.toml` and the
+/// classes of `examples/size-classes.csv`, in zero-duration runs.
+#[test]
+fn example_size_distributions_parse() {
+    let dir = scratch("examples-pm");
+    let text = std::fs::read_to_string("examples/room-pm.toml").unwrap().replace("duration = 1800.0", "duration = 0.0");
+    let modes = dir.join("room-pm.toml");
+    std::fs::write(&modes, text).unwrap();
+    let report = ok_json(&["room", modes.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    assert_eq!(report["distribution"]["bins"].as_array().unwrap().len(), 20);
+    let classes = dir.join("classes.toml");
+    let csv = std::fs::canonicalize("examples/size-classes.csv").unwrap();
+    std::fs::write(&classes, format!("[particles]\nsize_bins = {:?}\n[run]\nduration = 0.0\n", csv.to_str().unwrap()))
+        .unwrap();
+    let report = ok_json(&["room", classes.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    let d = &report["distribution"];
+    assert_eq!(d["bins"].as_array().unwrap().len(), 6);
+    assert!((d["all"]["injected"].as_f64().unwrap() / (20e-9 * 30.0) - 1.0).abs() < 1e-9, "{d}");
+}
+
+/// A distribution whose bins reach sizes the room cannot hold names the distribution, not a
+/// list of diameters the scene does not have.
+#[test]
+fn a_distribution_too_coarse_for_the_room_names_its_modes() {
+    let dir = scratch("coarse-distribution");
+    let scene = dir.join("coarse.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[[particles.modes]]\nmass_median = 0.1\ngeometric_sd = 2.0\n",
+    )
+    .unwrap();
+    user_error(&["room", scene.to_str().unwrap(), "--no-plot"], "`particles.modes` = ");
+}

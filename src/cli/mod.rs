@@ -19,6 +19,7 @@ mod impact;
 mod plot;
 mod presets;
 mod room;
+mod room_distribution;
 mod scene_file;
 
 use clap::{Args as ClapArgs, Parser, Subcommand, ValueEnum};

@@ -6,12 +6,14 @@ use std::path::PathBuf;
 use clap::Args as ClapArgs;
 use depo::tracker::correlations::LaiNazaroff;
 use depo::tracker::decay::MIN_AIRBORNE;
+use depo::tracker::distribution::DistributionStudy;
 use depo::tracker::studies::MAP_BINS;
 use depo::tracker::studies::{RoomPoint, RoomStudy};
 use depo::tracker::{DecayCurve, Estimate, Flow, Geometry, WallTally};
 use serde::Serialize;
 
 use super::plot::{self, Series};
+use super::room_distribution::DistributionReport;
 use super::{print_csv, progress_bar, scene_file, Error, Format};
 
 #[derive(ClapArgs, Debug)]
@@ -21,8 +23,8 @@ pub struct RoomArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     format: Format,
-    /// Directory for the figures (room-deposition.svg, room-beta.svg, room-decay.svg) and the
-    /// decay curves (room-decay.csv).
+    /// Directory for the figures (room-deposition.svg, room-beta.svg, room-decay.svg;
+    /// room-distribution.svg with a size distribution) and the decay curves (room-decay.csv).
     #[arg(long, default_value = "depo-room")]
     plot: PathBuf,
     /// Write no figures.
@@ -260,6 +262,9 @@ struct Report<'a> {
     max_particles_per_size: usize,
     duration_s: f64,
     sizes: &'a [Row],
+    /// With a size distribution: where its mass went.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    distribution: Option<&'a DistributionReport>,
 }
 
 /// A size's row; `size` the room's, m.
@@ -325,12 +330,30 @@ fn row(p: &RoomPoint, size: [f64; 3]) -> Row {
 }
 
 pub fn run(args: &RoomArgs) -> Result<(), Error> {
-    let study: RoomStudy = scene_file::room(args.scene.as_deref())?;
+    let scene = scene_file::room_scene(args.scene.as_deref())?;
+    let mut study: RoomStudy = scene.study;
     let where_ = args.scene.as_ref().map_or("the built-in room".to_string(), |p| p.display().to_string());
-    let progress = progress_bar(study.diameters.len(), "sizes")?;
+    // A size distribution runs the study at its bins instead of the study's diameters.
+    let distribution = scene.distribution.map(|distribution| DistributionStudy { study: study.clone(), distribution });
+    let runs = match &distribution {
+        Some(d) => d.bins().map_err(|e| format!("{where_}: {e}"))?.0.len(),
+        None => study.diameters.len(),
+    };
+    let progress = progress_bar(runs, "sizes")?;
     let start = std::time::Instant::now();
-    let points = study.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?;
+    let (points, balance) = match &distribution {
+        Some(d) => {
+            let (points, balance) =
+                d.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?;
+            (points, Some(balance))
+        }
+        None => (study.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?, None),
+    };
     progress.finish_and_clear();
+    if distribution.is_some() {
+        study.diameters = points.iter().map(|p| p.diameter).collect();
+    }
+    let distribution = balance.map(|b| DistributionReport::new(&b, study.scene.geometry.volume()));
     let seconds = start.elapsed().as_secs_f64();
     let Geometry::Room { size } = study.scene.geometry else { unreachable!("a room study has a room") };
     let u_star = match study.scene.flow {
@@ -352,9 +375,12 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 max_particles_per_size: study.max_count,
                 duration_s: study.scene.duration,
                 sizes: &rows,
+                distribution: distribution.as_ref(),
             };
             out!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?);
         }
+        // With a size distribution, the CSV is its mass balance (the per-size figures are in the JSON).
+        Format::Csv if distribution.is_some() => distribution.as_ref().map_or(Ok(()), DistributionReport::csv)?,
         Format::Csv => {
             let mut header = vec![
                 "diameter_um",
@@ -510,9 +536,17 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             decay_table(&rows, study.scene.air_exchange * 3600.0);
         }
     }
+    if let (Format::Table, Some(d)) = (args.format, &distribution) {
+        d.table();
+    }
     if !args.no_plot {
         std::fs::create_dir_all(&args.plot).map_err(|e| format!("cannot create {}: {e}", args.plot.display()))?;
         plot_room(&args.plot, &study, &rows)?;
+        if let Some(d) = &distribution {
+            let figure = args.plot.join("room-distribution.svg");
+            d.plot(&figure)?;
+            eprintln!("figure: {}", figure.display());
+        }
     }
     Ok(())
 }

@@ -5,10 +5,12 @@
 use std::path::Path;
 
 use depo::tracker::air::STANDARD_GRAVITY;
+use depo::tracker::distribution::{Amount, Distribution, Median, Mode, Quantity, SizeClass, DEFAULT_BINS};
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
-use depo::tracker::{Drag, Flow, Geometry, Scene, WallBehaviour};
+use depo::tracker::{Air, Drag, Flow, Geometry, Scene, WallBehaviour};
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
+use toml::Spanned;
 
 use super::{check_memory, Error};
 
@@ -95,6 +97,28 @@ struct RoomParticles {
     target_error: Option<f64>,
     max_count: Option<usize>,
     density: Option<f64>,
+    /// A size distribution instead of `diameters`: lognormal modes...
+    modes: Option<Spanned<Vec<Spanned<ModeFile>>>>,
+    /// ... cut into this many bins in ln d ...
+    bins: Option<Spanned<usize>>,
+    /// ... over this range (m).
+    bin_range: Option<Spanned<[f64; 2]>>,
+    /// Or measured size classes: a CSV file, relative to the scene file.
+    size_bins: Option<Spanned<String>>,
+}
+
+/// One lognormal mode of `particles.modes`.
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct ModeFile {
+    count_median: Option<f64>,
+    mass_median: Option<f64>,
+    geometric_sd: Option<f64>,
+    density: Option<f64>,
+    number_share: Option<f64>,
+    mass_share: Option<f64>,
+    number_concentration: Option<f64>,
+    mass_concentration: Option<f64>,
 }
 
 #[derive(Deserialize, Default)]
@@ -156,15 +180,26 @@ struct ChannelFile {
 
 /// Reads and parses `path`; a TOML error names the file, the line and the key.
 fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<T, Error> {
+    read_with_text(path).map(|(file, _)| file)
+}
+
+/// The line (from 1) of a byte offset into `text`.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
+}
+
+/// [`read`], and the file's text (for the lines of its values).
+fn read_with_text<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<(T, String), Error> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    toml::from_str(&text).map_err(|e| {
-        let line = e.span().map(|s| text[..s.start].matches('\n').count() + 1);
+    let file = toml::from_str(&text).map_err(|e| {
+        let line = e.span().map(|s| line_of(&text, s.start));
         let message = e.message().trim().replace('\n', " ");
         match line {
             Some(line) => format!("{} line {line}: {message}", path.display()),
             None => format!("{}: {message}", path.display()),
         }
-    })
+    })?;
+    Ok((file, text))
 }
 
 /// The drag law a `run.drag` names.
@@ -279,11 +314,18 @@ fn gravity(g: f64) -> [f64; 3] {
     [0.0, 0.0, -g]
 }
 
-/// The room study of `path`, or the built-in one.
-pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
+/// A room scene: its study, and the size distribution it runs instead of the study's
+/// diameters, if it gives one.
+pub struct RoomScene {
+    pub study: RoomStudy,
+    pub distribution: Option<Distribution>,
+}
+
+/// The room scene of `path` (its study and its size distribution), or the built-in one.
+pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     let mut study = RoomStudy::default();
-    let Some(path) = path else { return Ok(study) };
-    let file: RoomFile = read(path)?;
+    let Some(path) = path else { return Ok(RoomScene { study, distribution: None }) };
+    let (file, text): (RoomFile, String) = read_with_text(path)?;
     let scene = &mut study.scene;
     if let Some(size) = file.room.size {
         scene.geometry = Geometry::Room { size };
@@ -325,7 +367,7 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
     set(&mut study.transient, file.run.transient);
     check_transient(path, study.transient)?;
-    set(&mut study.diameters, file.particles.diameters);
+    set(&mut study.diameters, file.particles.diameters.clone());
     set(&mut study.count, file.particles.count);
     set(&mut study.max_count, file.particles.max_count);
     if let Some(target) = file.particles.target_error {
@@ -360,7 +402,8 @@ pub fn room(path: Option<&Path>) -> Result<RoomStudy, Error> {
     if study.diameters.is_empty() {
         return Err(format!("{}: `particles.diameters` is empty", path.display()));
     }
-    Ok(study)
+    let distribution = distribution(path, &text, &file.particles, study.density, &study.scene.air)?;
+    Ok(RoomScene { study, distribution })
 }
 
 /// The channel study of `path`, or the built-in one.
@@ -425,4 +468,216 @@ fn check_transient(path: &Path, transient: f64) -> Result<(), Error> {
     } else {
         Err(format!("{}: `run.transient` = {transient} must be in [0, 1)", path.display()))
     }
+}
+
+/// The size distribution of a room scene's `[particles]`: its `modes` or its `size_bins`
+/// file, or none. A mode's density defaults to `particles.density`, and its amount to a share
+/// of 1 (of number for a count median, of mass for a mass median). Errors name the file, the
+/// line and the key.
+fn distribution(
+    path: &Path,
+    text: &str,
+    particles: &RoomParticles,
+    density: f64,
+    air: &Air,
+) -> Result<Option<Distribution>, Error> {
+    let at = |offset: usize, message: String| format!("{} line {}: {message}", path.display(), line_of(text, offset));
+    if let (Some(modes), Some(bins)) = (&particles.modes, &particles.size_bins) {
+        let later = modes.span().start.max(bins.span().start);
+        return Err(at(later, "give `particles.modes` or `particles.size_bins`, not both".into()));
+    }
+    let given =
+        particles.modes.as_ref().map(|m| m.span().start).or(particles.size_bins.as_ref().map(|b| b.span().start));
+    let Some(offset) = given else {
+        for (key, span) in [
+            ("particles.bins", particles.bins.as_ref().map(|b| b.span().start)),
+            ("particles.bin_range", particles.bin_range.as_ref().map(|b| b.span().start)),
+        ] {
+            if let Some(s) = span {
+                return Err(at(s, format!("`{key}` needs a size distribution, `particles.modes`")));
+            }
+        }
+        return Ok(None);
+    };
+    if particles.diameters.is_some() {
+        return Err(at(offset, "give `particles.diameters` or a size distribution, not both".into()));
+    }
+    let distribution = if let Some(modes) = &particles.modes {
+        let mut parsed = Vec::new();
+        for (i, mode) in modes.get_ref().iter().enumerate() {
+            let key = |k: &str| format!("`particles.modes[{i}].{k}`");
+            let m = mode.get_ref();
+            let line_at = |message: String| at(mode.span().start, message);
+            let median = match (m.count_median, m.mass_median) {
+                (Some(d), None) => Median::Count(d),
+                (None, Some(d)) => Median::Mass(d),
+                (Some(_), Some(_)) => {
+                    return Err(line_at(format!("{} or {}, not both", key("count_median"), key("mass_median"))))
+                }
+                (None, None) => {
+                    return Err(line_at(format!("{} or {} is needed", key("count_median"), key("mass_median"))))
+                }
+            };
+            let amounts = [
+                m.number_share.map(Amount::NumberShare),
+                m.mass_share.map(Amount::MassShare),
+                m.number_concentration.map(Amount::NumberConcentration),
+                m.mass_concentration.map(Amount::MassConcentration),
+            ];
+            let mut given = amounts.into_iter().flatten();
+            let amount = match (given.next(), given.next()) {
+                (Some(a), None) => a,
+                (None, _) => match median {
+                    Median::Count(_) => Amount::NumberShare(1.0),
+                    Median::Mass(_) => Amount::MassShare(1.0),
+                },
+                (Some(_), Some(_)) => {
+                    return Err(line_at(format!(
+                        "{}: give one of `number_share`, `mass_share`, `number_concentration`, `mass_concentration`",
+                        key("*")
+                    )))
+                }
+            };
+            let geometric_sd = m.geometric_sd.ok_or_else(|| line_at(format!("{} is needed", key("geometric_sd"))))?;
+            parsed.push(Mode { median, geometric_sd, density: m.density.unwrap_or(density), amount });
+        }
+        let bins = particles.bins.as_ref().map_or(DEFAULT_BINS, |b| *b.get_ref());
+        let range = particles.bin_range.as_ref().map(|r| *r.get_ref());
+        let distribution = Distribution::Modes { modes: parsed, bins, range };
+        distribution.validate().map_err(|e| {
+            // The line of the mode the error names, or of the key.
+            let index: Option<usize> =
+                e.field.strip_prefix("modes[").and_then(|rest| rest.split(']').next()).and_then(|i| i.parse().ok());
+            let offset = match (index, e.field.as_str()) {
+                (Some(i), _) => modes.get_ref()[i].span().start,
+                (None, "bins") => particles.bins.as_ref().map_or(offset, |b| b.span().start),
+                (None, "bin_range") => particles.bin_range.as_ref().map_or(offset, |b| b.span().start),
+                _ => offset,
+            };
+            if e.field == "modes" {
+                // The modes together: their count is no value of theirs.
+                at(offset, format!("`particles.modes`: {}", e.requirement))
+            } else {
+                at(offset, format!("`particles.{}` = {} {}", e.field, e.value, e.requirement))
+            }
+        })?;
+        distribution
+    } else {
+        let name = particles.size_bins.as_ref().expect("given");
+        if let Some(b) =
+            particles.bins.as_ref().map(|b| b.span().start).or(particles.bin_range.as_ref().map(|b| b.span().start))
+        {
+            return Err(at(
+                b,
+                "`particles.bins` and `particles.bin_range` are for `particles.modes`; a size_bins file has its own"
+                    .into(),
+            ));
+        }
+        let file = path.parent().unwrap_or(Path::new(".")).join(name.get_ref());
+        Distribution::Classes(
+            size_classes(&file, density).map_err(|e| at(name.span().start, format!("`particles.size_bins`: {e}")))?,
+        )
+    };
+    distribution
+        .bins(air)
+        .map_err(|e| at(offset, format!("`particles.{}` = {} {}", e.field, e.value, e.requirement)))?;
+    Ok(Some(distribution))
+}
+
+/// The size classes of a CSV file: a header naming the edges (`lower` and `upper`, m, or
+/// `lower_um` and `upper_um`) or the midpoints (`diameter` or `diameter_um`, at least two, in
+/// increasing order: edges at the geometric means between them), and `number` (1/m^3) or
+/// `mass` (kg/m^3) per class; a `density` column (kg/m^3) is optional, `density` standing in.
+/// `#` starts a comment.
+fn size_classes(path: &Path, density: f64) -> Result<Vec<SizeClass>, Error> {
+    let name = path.display();
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_path(path)
+        .map_err(|e| format!("{name}: {e}"))?;
+    let headers = reader.headers().map_err(|e| format!("{name}: {e}"))?.clone();
+    let column = |wanted: &str| headers.iter().position(|h| h.eq_ignore_ascii_case(wanted));
+    // A column in m or in um.
+    let sized = |key: &str| {
+        column(key)
+            .map(|c| (c, 1.0, key.to_string()))
+            .or_else(|| column(&format!("{key}_um")).map(|c| (c, 1e-6, format!("{key}_um"))))
+    };
+    let found = || headers.iter().collect::<Vec<_>>().join(", ");
+    let edges = match (sized("lower"), sized("upper"), sized("diameter")) {
+        (Some(lo), Some(hi), None) => Ok((lo, hi)),
+        (None, None, Some(mid)) => Err(mid),
+        _ => {
+            return Err(format!(
+                "{name}: the header must name `lower` and `upper` or `diameter` (in m, or with `_um`) (found: {})",
+                found()
+            ))
+        }
+    };
+    let (amount, quantity) = match (column("number"), column("mass")) {
+        (Some(c), None) => (c, Quantity::Number),
+        (None, Some(c)) => (c, Quantity::Mass),
+        _ => return Err(format!("{name}: the header must name `number` or `mass`, one of them (found: {})", found())),
+    };
+    let density_column = column("density");
+    let mut rows = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| format!("{name}: {e}"))?;
+        let line = record.position().map_or(0, |p| p.line());
+        let number = |index: usize, what: &str| -> Result<f64, Error> {
+            let text = record.get(index).unwrap_or("");
+            text.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| format!("{name} line {line}: `{what}` '{text}' is not a finite number"))
+        };
+        let (a, b) = match &edges {
+            Ok(((lo, kl, nl), (hi, kh, nh))) => (number(*lo, nl)? * kl, number(*hi, nh)? * kh),
+            Err((mid, k, n)) => {
+                let d = number(*mid, n)? * k;
+                (d, d)
+            }
+        };
+        let rho = match density_column {
+            Some(c) => number(c, "density")?,
+            None => density,
+        };
+        let what = if quantity == Quantity::Number { "number" } else { "mass" };
+        rows.push((line, SizeClass { lower: a, upper: b, amount: number(amount, what)?, quantity, density: rho }));
+    }
+    if let Err((_, _, key)) = &edges {
+        // Midpoints: edges halfway in ln d, the outer ones as far out as the inner ones.
+        if rows.len() < 2 {
+            return Err(format!("{name}: `{key}` gives midpoints: at least two classes are needed"));
+        }
+        for w in rows.windows(2) {
+            if w[1].1.lower <= w[0].1.lower {
+                return Err(format!("{name} line {}: `{key}` must increase from row to row", w[1].0));
+            }
+        }
+        let mids: Vec<f64> = rows.iter().map(|r| r.1.lower).collect();
+        let n = mids.len();
+        let inner: Vec<f64> = mids.windows(2).map(|w| (w[0] * w[1]).sqrt()).collect();
+        for (i, (_, class)) in rows.iter_mut().enumerate() {
+            class.lower = if i == 0 { mids[0] * mids[0] / inner[0] } else { inner[i - 1] };
+            class.upper = if i == n - 1 { mids[n - 1] * mids[n - 1] / inner[n - 2] } else { inner[i] };
+        }
+    }
+    let classes: Vec<SizeClass> = rows.iter().map(|r| r.1).collect();
+    Distribution::Classes(classes.clone()).validate().map_err(|e| {
+        let row: Option<usize> =
+            e.field.strip_prefix("size_bins[").and_then(|rest| rest.split(']').next()).and_then(|i| i.parse().ok());
+        match row {
+            Some(i) => format!(
+                "{name} line {}: {} = {} {}",
+                rows[i].0,
+                e.field.split('.').next_back().unwrap_or(""),
+                e.value,
+                e.requirement
+            ),
+            None => format!("{name}: {} {}", e.value, e.requirement),
+        }
+    })?;
+    Ok(classes)
 }

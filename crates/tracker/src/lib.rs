@@ -28,6 +28,9 @@
 //!   enter a near-wall layer (in `track` as `excursions`).
 //! - [`convergence`]: run time against error of the integrators over the step size.
 //! - [`studies`]: the room and channel studies, runs beside their correlations.
+//! - [`distribution`]: size distributions (lognormal modes by number or mass, measured size
+//!   classes) through a room study: the mass deposited per surface, exhausted and airborne,
+//!   for all of it and for PM2.5 and PM10.
 //! - [`correlations`]: what to compare with: Lai & Nazaroff (2000) for rooms, Wood (1981) and
 //!   Papavergos & Hedley (1984) for channels.
 //!
@@ -50,6 +53,7 @@ pub mod air;
 pub mod convergence;
 pub mod correlations;
 pub mod decay;
+pub mod distribution;
 pub mod excursions;
 pub mod flow;
 pub mod geometry;

@@ -21,7 +21,7 @@ use crate::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
 use crate::excursions::Excursions;
 use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
-use crate::run::{run, run_more, Estimate, Run};
+use crate::run::{run, run_more, Balance, Estimate, Run};
 use crate::scene::{Injection, Scene, SceneError, SizeDistribution};
 use crate::track::WallTally;
 
@@ -174,6 +174,9 @@ pub struct RoomPoint {
     /// The loss rate fitted to it as decay experiments fit theirs, and `beta` from it with
     /// the air-exchange rate taken off; `None` when fewer than 3 sample times qualify.
     pub decay_fit: Option<DecayFit>,
+    /// Where the tracked particles are at the end of the run (with ventilation, the exhausted
+    /// ones too): the mass balance a size distribution's is summed from.
+    pub balance: Balance,
 }
 
 /// The deposition maps' grid.
@@ -287,6 +290,7 @@ impl RoomStudy {
                 airborne: (balance.airborne, balance.airborne_mass),
                 decay,
                 decay_fit,
+                balance,
             });
             progress(i + 1);
         }

@@ -1,0 +1,280 @@
+//! `depo room` with a size distribution: where its mass went (per surface, exhausted,
+//! airborne), for all of it and for PM2.5 and PM10, as a table, CSV, JSON and a figure.
+
+use std::path::Path;
+
+use depo::tracker::distribution::{MassBalance, MassSplit, Portion};
+use serde::Serialize;
+
+use super::plot::{self, Series};
+use super::room::Measured;
+use super::{print_csv, Error};
+
+/// A part of the mass: the value, its standard error over the runs' randomness, and the bound
+/// on the quadrature's error (`null` where a bin with mass has no neighbour to bound it).
+#[derive(Serialize)]
+pub struct Part {
+    pub value: f64,
+    pub error: f64,
+    pub quadrature: Option<f64>,
+}
+
+/// Where one class of the mass went, in [`DistributionReport::mass_unit`].
+#[derive(Serialize)]
+pub struct Split {
+    pub injected: f64,
+    pub floor: Part,
+    pub ceiling: Part,
+    pub walls: Part,
+    pub airborne: Part,
+    pub exhausted: Part,
+    pub escaped: Part,
+    /// The loss rate of the mass while its size distribution is the injected one...
+    pub beta_per_hour: Measured,
+    /// ... over this share of the mass (the bins whose runs measured a beta).
+    pub beta_mass_share: f64,
+}
+
+/// One bin: its range, its run's diameter, its number and mass, and the shares of its run's
+/// particles in each fate.
+#[derive(Serialize)]
+pub struct BinRow {
+    pub lower_um: f64,
+    pub upper_um: f64,
+    pub diameter_um: f64,
+    pub density: f64,
+    pub number: f64,
+    pub mass: f64,
+    pub pm2_5_mass: f64,
+    pub pm10_mass: f64,
+    pub particles: usize,
+    pub floor: f64,
+    pub ceiling: f64,
+    pub walls: f64,
+    pub airborne: f64,
+    pub exhausted: f64,
+}
+
+/// The distribution's answers.
+#[derive(Serialize)]
+pub struct DistributionReport {
+    /// "kg" (in the room: concentrations times its volume) or "share of the injected mass".
+    pub mass_unit: &'static str,
+    /// Mass of the modes outside the bins, left out of the splits.
+    pub outside_bins: f64,
+    pub all: Split,
+    pub pm10: Split,
+    pub pm2_5: Split,
+    pub bins: Vec<BinRow>,
+    /// How PM2.5 and PM10 are cut.
+    pub pm_definition: &'static str,
+}
+
+/// How PM2.5 and PM10 are cut, for the outputs.
+pub const PM_DEFINITION: &str = "PM2.5 and PM10: mass of particles of aerodynamic diameter (unit density, with slip \
+correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341, ISO 7708)";
+
+impl DistributionReport {
+    /// The report of `balance` in a room of `volume` (m^3).
+    pub fn new(balance: &MassBalance, volume: f64) -> Self {
+        // Masses in kg in the room, or as shares of the injected mass in the bins.
+        let scale = if balance.absolute { volume } else { 1.0 / balance.all.injected.max(f64::MIN_POSITIVE) };
+        let part = |p: Portion| Part {
+            value: p.value * scale,
+            error: p.error * scale,
+            quadrature: p.quadrature.is_finite().then_some(p.quadrature * scale),
+        };
+        let split = |s: &MassSplit| Split {
+            injected: s.injected * scale,
+            floor: part(s.deposited[0]),
+            ceiling: part(s.deposited[1]),
+            walls: part(s.deposited[2]),
+            airborne: part(s.airborne),
+            exhausted: part(s.exhausted),
+            escaped: part(s.escaped),
+            beta_per_hour: Measured::from(s.beta).scaled(3600.0),
+            beta_mass_share: s.beta_share,
+        };
+        // Numbers per room, or as shares of the number in the bins.
+        let total_number: f64 = balance.bins.iter().map(|(b, _)| b.number).sum();
+        let number_scale = if balance.absolute { volume } else { 1.0 / total_number.max(f64::MIN_POSITIVE) };
+        let bins = balance
+            .bins
+            .iter()
+            .map(|(b, f)| {
+                let share = |k: usize| k as f64 / f.particles.max(1) as f64;
+                BinRow {
+                    lower_um: b.lower * 1e6,
+                    upper_um: b.upper * 1e6,
+                    diameter_um: b.diameter * 1e6,
+                    density: b.density,
+                    number: b.number * number_scale,
+                    mass: b.mass * scale,
+                    pm2_5_mass: b.pm_mass[0] * scale,
+                    pm10_mass: b.pm_mass[1] * scale,
+                    particles: f.particles,
+                    floor: share(f.deposited[0]),
+                    ceiling: share(f.deposited[1]),
+                    walls: share(f.deposited[2]),
+                    airborne: share(f.airborne),
+                    exhausted: share(f.exhausted),
+                }
+            })
+            .collect();
+        Self {
+            mass_unit: if balance.absolute { "kg" } else { "share of the injected mass" },
+            outside_bins: balance.outside * scale,
+            all: split(&balance.all),
+            pm10: split(&balance.pm[1]),
+            pm2_5: split(&balance.pm[0]),
+            bins,
+            pm_definition: PM_DEFINITION,
+        }
+    }
+
+    fn classes(&self) -> [(&'static str, &Split); 3] {
+        [("all", &self.all), ("PM10", &self.pm10), ("PM2.5", &self.pm2_5)]
+    }
+
+    /// The table under the per-size one.
+    pub fn table(&self) {
+        let absolute = self.mass_unit == "kg";
+        // Micrograms read better than kilograms.
+        let k = if absolute { 1e9 } else { 1.0 };
+        let unit = if absolute { "ug in the room" } else { "share of the injected mass" };
+        let densities: Vec<String> = {
+            let mut d: Vec<f64> = Vec::new();
+            self.bins.iter().for_each(|b| {
+                if !d.contains(&b.density) {
+                    d.push(b.density)
+                }
+            });
+            d.iter().map(|d| format!("{d}")).collect()
+        };
+        out!(
+            "Size distribution: {} bins (density {} kg/m^3), each run at its geometric midpoint; mass ({unit}):",
+            self.bins.len(),
+            densities.join(", ")
+        );
+        let cell = |p: &Part| match p.quadrature {
+            Some(q) => format!("{:.3e} +- {:.1e} ({:.1e})", p.value * k, p.error * k, q * k),
+            None => format!("{:.3e} +- {:.1e} (?)", p.value * k, p.error * k),
+        };
+        out!(
+            "{:>6}  {:>10}  {:>28}  {:>28}  {:>28}  {:>28}  {:>28}  {:>20}",
+            "",
+            "injected",
+            "floor",
+            "ceiling",
+            "walls",
+            "airborne (end)",
+            "exhausted",
+            "beta of mass (1/h)"
+        );
+        for (name, s) in self.classes() {
+            out!(
+                "{name:>6}  {:>10.3e}  {:>28}  {:>28}  {:>28}  {:>28}  {:>28}  {:>20}",
+                s.injected * k,
+                cell(&s.floor),
+                cell(&s.ceiling),
+                cell(&s.walls),
+                cell(&s.airborne),
+                cell(&s.exhausted),
+                format!("{:.3} +- {:.3}", s.beta_per_hour.value, s.beta_per_hour.error)
+            );
+        }
+        let partial: Vec<String> = self
+            .classes()
+            .iter()
+            .filter(|(_, s)| s.beta_mass_share < 1.0)
+            .map(|(name, s)| format!("{name} {:.1} %", 100.0 * s.beta_mass_share))
+            .collect();
+        if !partial.is_empty() {
+            out!(
+                "beta of mass over part of the mass only ({}): the rest is in bins whose particles all settled before the averaging window, with no beta to measure.",
+                partial.join(", ")
+            );
+        }
+        out!(
+            "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
+             one run at its midpoint (?: a bin without neighbours). Mass outside the bins, left out: {:.3e}. {PM_DEFINITION}. \
+             beta of mass: the loss rate of the airborne mass while its size distribution is the injected one.",
+            self.outside_bins * k
+        );
+    }
+
+    /// The CSV: one row per class (all, PM10, PM2.5).
+    pub fn csv(&self) -> Result<(), Error> {
+        let parts = ["floor", "ceiling", "walls", "airborne", "exhausted"];
+        let mut header = vec!["class".to_string(), "injected".to_string()];
+        for p in parts {
+            header.extend([p.to_string(), format!("{p}_error"), format!("{p}_quadrature")]);
+        }
+        header.extend(["beta_per_hour".to_string(), "beta_error".to_string(), "beta_mass_share".to_string()]);
+        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+        print_csv(
+            &header,
+            self.classes().into_iter().map(|(name, s)| {
+                let mut row = vec![name.to_string(), s.injected.to_string()];
+                for p in [&s.floor, &s.ceiling, &s.walls, &s.airborne, &s.exhausted] {
+                    row.extend([
+                        p.value.to_string(),
+                        p.error.to_string(),
+                        p.quadrature.map_or(String::new(), |q| q.to_string()),
+                    ]);
+                }
+                row.extend([
+                    s.beta_per_hour.value.to_string(),
+                    s.beta_per_hour.error.to_string(),
+                    s.beta_mass_share.to_string(),
+                ]);
+                row
+            }),
+        )
+    }
+
+    /// The figure: per bin, the mass per unit `ln d` injected and where it went, against the
+    /// bin's diameter; one set of curves per density (the first solid, the others dashed).
+    pub fn plot(&self, path: &Path) -> Result<(), Error> {
+        let mut series = Vec::new();
+        let mut densities: Vec<f64> = Vec::new();
+        self.bins.iter().for_each(|b| {
+            if !densities.contains(&b.density) {
+                densities.push(b.density);
+            }
+        });
+        for &rho in &densities {
+            let bins: Vec<&BinRow> = self.bins.iter().filter(|b| b.density == rho).collect();
+            let label = |what: &str| {
+                if densities.len() > 1 {
+                    format!("{what} ({rho} kg/m^3)")
+                } else {
+                    what.to_string()
+                }
+            };
+            let per_ln_d = |pick: &dyn Fn(&BinRow) -> f64| -> Vec<(f64, f64)> {
+                bins.iter().map(|b| (b.diameter_um, b.mass * pick(b) / (b.upper_um / b.lower_um).ln())).collect()
+            };
+            // The first density's curves solid, the others' dashed, each fate in its colour.
+            let first = rho == densities[0];
+            let curve = |name: &str, points: Vec<(f64, f64)>, color: usize| {
+                let s = Series::line(label(name), points).color(color);
+                if first {
+                    s
+                } else {
+                    s.dashed()
+                }
+            };
+            series.push(curve("injected", per_ln_d(&|_| 1.0), 7));
+            series.push(curve("floor", per_ln_d(&|b| b.floor), 0));
+            series.push(curve("ceiling and walls", per_ln_d(&|b| b.ceiling + b.walls), 2));
+            series.push(curve("airborne at the end", per_ln_d(&|b| b.airborne), 1));
+            if bins.iter().any(|b| b.exhausted > 0.0) {
+                series.push(curve("exhausted", per_ln_d(&|b| b.exhausted), 3));
+            }
+        }
+        let y =
+            if self.mass_unit == "kg" { "mass per unit ln d in the room (kg)" } else { "share of mass per unit ln d" };
+        plot::log_log(path, "Where a size distribution's mass goes", "particle diameter (um)", y, &series)
+    }
+}
