@@ -10,8 +10,8 @@
 //! ```
 //!
 //! It prints the tables as Markdown and writes `measured-thatcher2002.svg` and
-//! `measured-lai2005.svg` into the directory. What is measured comes from the papers' stored
-//! text (their abstracts), cited where it is used; nothing here is fitted.
+//! `measured-lai2005.svg` into the directory. What is measured comes from the papers'
+//! abstracts, cited where it is used; nothing here is fitted.
 
 use std::path::{Path, PathBuf};
 
@@ -144,7 +144,7 @@ fn main() -> Result<(), Error> {
                 .collect(),
         )
         .color(0),
-        Series::line("measured, least: 1.3 (Thatcher et al. 2002; per size not in the stored text)", band(1.3))
+        Series::line("measured, least: 1.3 (Thatcher et al. 2002; per size not in the abstract)", band(1.3))
             .dashed()
             .color(1),
         Series::line("measured, most: 2.4 (larger particles more)", band(2.4)).dashed().color(1),
@@ -168,7 +168,7 @@ fn main() -> Result<(), Error> {
             None => format!("{:.2e} +- {:.1e} [{}]", s.walls.0, s.walls.1, s.walls_events),
         };
         println!(
-            "| {} | {depo} | {:.2e} | rising with size; values not in the stored text |",
+            "| {} | {depo} | {:.2e} | rising with size; values not in the abstract |",
             (s.d_um * 1e3).round() / 1e3,
             model(s.d_um, chamber.side, chamber.u_star).1
         );
@@ -191,7 +191,7 @@ fn main() -> Result<(), Error> {
         .color(0),
     );
     series.push(
-        Series::markers("measured (Lai & Nazaroff 2005): rising with size; values not in the stored text", vec![])
+        Series::markers("measured (Lai & Nazaroff 2005): rising with size; values not in the abstract", vec![])
             .color(1),
     );
     plot::log_log(

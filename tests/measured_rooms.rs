@@ -3,7 +3,7 @@
 //! at the rate settling alone gives a well-mixed room, computed here from Stokes' law and not
 //! by the code under test.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use serde_json::Value;
@@ -25,13 +25,13 @@ fn edited(file: &str, replacements: &[(&str, &str)]) -> PathBuf {
     }
     let dir = std::env::temp_dir().join(format!("depo-measured-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let name = std::path::Path::new(file).file_name().unwrap().to_str().unwrap();
+    let name = Path::new(file).file_name().unwrap().to_str().unwrap();
     let path = dir.join(format!("{}-{name}", replacements.len()));
     std::fs::write(&path, text).unwrap();
     path
 }
 
-fn room_json(scene: &PathBuf) -> Value {
+fn room_json(scene: &Path) -> Value {
     let out = depo(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"]);
     assert!(out.status.success(), "{}: {}", scene.display(), String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).unwrap()
