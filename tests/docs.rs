@@ -47,10 +47,15 @@ fn workspace_docs_build_and_the_facade_links_resolve() {
 #[test]
 fn install_sh_reuses_the_readme_s_one_build() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let one_build = "cargo build --release --workspace --examples";
+    let one_build = "cargo build --release --workspace --lib --bins --examples";
     let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
     let quick_start = readme.split("## Quick start").nth(1).unwrap().split("\n## ").next().unwrap();
     assert!(quick_start.contains(one_build), "the README's quick start does not give `{one_build}`");
+    // Cargo builds only the target kinds a command names: `--examples` alone leaves no
+    // `target/release/depo` on a clean checkout, and `--bins` alone no `libdepo.so`.
+    for kind in ["--lib", "--bins", "--examples"] {
+        assert!(one_build.split_whitespace().any(|w| w == kind), "the one build must name {kind}");
+    }
     let install = std::fs::read_to_string(root.join("crates/capi/install.sh")).unwrap();
     let builds: Vec<&str> = install
         .lines()

@@ -6,7 +6,7 @@
 #   PREFIX/include/depo.h, depo.hpp, PREFIX/share/depo/fortran/depo.f90
 # Usage: crates/capi/install.sh PREFIX [LIBDIR]
 #   LIBDIR holds libdepo.so and libdepo.a already built. By default they are taken from
-#   target/release after `cargo build --release --workspace --examples`: the README's one build
+#   target/release after `cargo build --release --workspace --lib --bins --examples`: the README's one build
 #   for the CLI, the examples and libdepo, so after it this is a no-op. (Cargo unifies
 #   dependency features per command: `cargo build --release -p depo-capi` would compile the
 #   library's dependencies a second time.)
@@ -18,7 +18,7 @@ prefix="${1:?usage: install.sh PREFIX [LIBDIR]}"
 libdir="${2:-}"
 if [ -z "$libdir" ]; then
   root="$(cd "$here/../.." && pwd)"
-  (cd "$root" && cargo build --release --workspace --examples)
+  (cd "$root" && cargo build --release --workspace --lib --bins --examples)
   target="${CARGO_TARGET_DIR:-target}"
   case "$target" in /*) ;; *) target="$root/$target" ;; esac
   libdir="$target/release"
