@@ -85,11 +85,12 @@ fn fitted_beta_agrees_with_the_study_beta_where_both_resolve() {
     assert_eq!(fit.window[0], 0.1 * 900.0, "the fit starts where the study's averages do");
     // The release, exactly: deposited per surface + exhausted + airborne.
     let deposited: usize = point.deposited.iter().map(|d| d.0).sum();
-    assert_eq!(deposited + point.exhausted.0 + point.airborne.0, point.released.0);
-    let mass: f64 = point.deposited.iter().map(|d| d.1).sum::<f64>() + point.exhausted.1 + point.airborne.1;
-    assert!((mass / point.released.1 - 1.0).abs() < 1e-12);
-    assert!(point.exhausted.0 > 0 && point.deposited[0].0 > point.deposited[2].0 && point.deposited[1].0 == 0);
-    assert_eq!(point.decay.counts.last(), Some(&point.airborne.0));
+    let b = &point.balance;
+    assert_eq!(deposited + b.exhausted + b.airborne, b.injected);
+    let mass: f64 = point.deposited.iter().map(|d| d.1).sum::<f64>() + b.exhausted_mass + b.airborne_mass;
+    assert!((mass / b.injected_mass - 1.0).abs() < 1e-12);
+    assert!(b.exhausted > 0 && point.deposited[0].0 > point.deposited[2].0 && point.deposited[1].0 == 0);
+    assert_eq!(point.decay.counts.last(), Some(&b.airborne));
 }
 
 /// Excursions leave the decay curve alone: they start from the tracked particles and never
