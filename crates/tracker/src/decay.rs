@@ -150,8 +150,9 @@ pub struct DecayFit {
 /// One estimate against another from the same particles: their difference and its standard
 /// error by the delta method over the particles, each particle's contributions to the two
 /// taken together. Both rest on the same particles, so they are correlated and the error of
-/// the difference is not the two errors combined as if independent (for a ventilated room of
-/// settling particles it is about half of that; see the module docs).
+/// the difference is not the two errors combined as if independent (it is 0.63 of that in a
+/// ventilated room at 10 um, 0.41 in a ventilated box of settling particles; see the module
+/// docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Comparison {
     /// The first estimate less the second.
