@@ -9,7 +9,7 @@ use depo::tracker::decay::MIN_AIRBORNE;
 use depo::tracker::distribution::DistributionStudy;
 use depo::tracker::studies::MAP_BINS;
 use depo::tracker::studies::{RoomPoint, RoomStudy};
-use depo::tracker::{DecayCurve, Estimate, Flow, Geometry, WallTally};
+use depo::tracker::{binomial_error, DecayCurve, Estimate, Flow, Geometry, WallTally};
 use serde::Serialize;
 
 use super::plot::{self, Series};
@@ -188,13 +188,12 @@ struct Share {
 impl Share {
     /// `(count, kg)` of `released`, onto a surface of `area` (m^2) if any.
     fn of((count, kg): (usize, f64), released: (usize, f64), area: Option<f64>) -> Self {
-        let n = released.0.max(1) as f64;
-        let share = count as f64 / n;
+        let share = count as f64 / released.0.max(1) as f64;
         let mass_share = if released.1 > 0.0 { kg / released.1 } else { 0.0 };
         Self {
             count,
             share,
-            share_error: (share * (1.0 - share) / n).sqrt(),
+            share_error: binomial_error(share, released.0),
             kg,
             mass_share,
             loading_per_m2: area.map(|a| mass_share / a),
@@ -215,15 +214,25 @@ struct Release {
 }
 
 /// `beta` fitted to the decay curve: the total loss rate `k`, `beta = k - a`, both per hour
-/// with the delta method's standard error, the fit's window and points, and how many
-/// combined standard errors the fitted `beta` lies from the study's.
+/// with the delta method's standard error, the fit's window and points, the fitted `beta`
+/// less the study's with the standard error of that difference (paired over the particles,
+/// which both rest on), and `z`, the difference in those standard errors: absent when either
+/// `beta` rests on no event or has no error.
 #[derive(Serialize)]
 struct DecayFitRow {
     beta_per_hour: Measured,
     total_per_hour: Measured,
     window_s: [f64; 2],
     points: usize,
-    z: f64,
+    difference_per_hour: Difference,
+    z: Option<f64>,
+}
+
+/// A difference of two estimates from the same particles, with its paired standard error.
+#[derive(Serialize)]
+struct Difference {
+    value: f64,
+    error: f64,
 }
 
 /// A decay curve: sample times (s), the airborne share, its standard error, and the count.
@@ -298,14 +307,16 @@ fn row(p: &RoomPoint, size: [f64; 3]) -> Row {
         release: {
             let floor = size[0] * size[1];
             let walls = 2.0 * (size[0] + size[1]) * size[2];
+            let b = &p.balance;
+            let released = (b.injected, b.injected_mass);
             Release {
-                particles: p.released.0,
-                kg: p.released.1,
-                floor: Share::of(p.deposited[0], p.released, Some(floor)),
-                ceiling: Share::of(p.deposited[1], p.released, Some(floor)),
-                walls: Share::of(p.deposited[2], p.released, Some(walls)),
-                exhausted: Share::of(p.exhausted, p.released, None),
-                airborne: Share::of(p.airborne, p.released, None),
+                particles: b.injected,
+                kg: b.injected_mass,
+                floor: Share::of(p.deposited[0], released, Some(floor)),
+                ceiling: Share::of(p.deposited[1], released, Some(floor)),
+                walls: Share::of(p.deposited[2], released, Some(walls)),
+                exhausted: Share::of((b.exhausted, b.exhausted_mass), released, None),
+                airborne: Share::of((b.airborne, b.airborne_mass), released, None),
             }
         },
         decay_fit: p.decay_fit.map(|f| DecayFitRow {
@@ -313,7 +324,11 @@ fn row(p: &RoomPoint, size: [f64; 3]) -> Row {
             total_per_hour: per_hour(f.total),
             window_s: f.window,
             points: f.points,
-            z: (f.beta.value - p.beta.value) / (f.beta.error.powi(2) + p.beta.error.powi(2)).sqrt(),
+            difference_per_hour: Difference {
+                value: f.against_loss_rate.difference * 3600.0,
+                error: f.against_loss_rate.error * 3600.0,
+            },
+            z: f.against_loss_rate.z,
         }),
         decay: Curve { intercept: p.decay_fit.map(|f| f.intercept), ..Curve::of(&p.decay) },
         deposited: Deposited {
@@ -560,18 +575,34 @@ fn rate_cell(m: &Measured) -> String {
     }
 }
 
+/// Fewer deposits than this within the decay fit's window are flagged in the table: the
+/// fitted `beta` then rests on a handful of events (a relative Poisson error above 30 %) and
+/// its delta-method error is itself uncertain.
+const FEW_DEPOSITS: usize = 10;
+
+/// The fitted `beta` per hour: `value +- error [deposits]`, flagged `?` with fewer than
+/// [`FEW_DEPOSITS`], or `< bound [0]` (the 95 % upper bound) with none.
+fn fitted_cell(m: &Measured) -> String {
+    match m.upper_bound {
+        Some(bound) => format!("< {bound:.2e} [0]"),
+        None => format!("{} [{}]{}", rate_cell(m), m.events, if m.events < FEW_DEPOSITS { "?" } else { "" }),
+    }
+}
+
 /// The table's second part: each size read as a decay experiment (the fitted `beta` beside
 /// the study's) and where the release ends; `ach` the air changes per hour.
 fn decay_table(rows: &[Row], ach: f64) {
     out!("");
     out!(
         "After the release at t = 0, as a decay experiment reads it: beta fitted = the least-squares slope of ln N(t) \
-         over the window (from the averages' start while >= {MIN_AIRBORNE} particles are airborne), less a = {ach} /h; \
-         z = (fitted - beta) / combined standard error. Then where the released particles are at the end, % of \
-         the number (for one size also of the mass), and the floor's loading per mg released."
+         over the window (from the averages' start while >= {MIN_AIRBORNE} particles are airborne), less a = {ach} /h, \
+         [deposits in the window], ? fewer than {FEW_DEPOSITS}; z = (fitted - beta) / the standard error of that \
+         difference, paired over the particles both rest on (- where either has no event or no error). Then where the released \
+         particles are at the end, % of the number (for one size also of the mass), and the floor's loading per mg \
+         released."
     );
     out!(
-        "{:>8}  {:>20} {:>6} {:>12}  {:>7} {:>7} {:>7} {:>9} {:>8}  {:>20}",
+        "{:>8}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7} {:>9} {:>8}  {:>20}",
         "d (um)",
         "beta fitted (1/h)",
         "z",
@@ -586,8 +617,8 @@ fn decay_table(rows: &[Row], ach: f64) {
     for r in rows {
         let (fitted, z, window) = match &r.decay_fit {
             Some(f) => (
-                rate_cell(&f.beta_per_hour),
-                format!("{:.1}", f.z),
+                fitted_cell(&f.beta_per_hour),
+                f.z.map_or("-".to_string(), |z| format!("{z:.1}")),
                 format!("{:.0}-{:.0}", f.window_s[0], f.window_s[1]),
             ),
             None => ("no fit".to_string(), "-".to_string(), "-".to_string()),
@@ -595,7 +626,7 @@ fn decay_table(rows: &[Row], ach: f64) {
         let release = &r.release;
         let pct = |s: &Share| format!("{:.1}", 100.0 * s.share);
         out!(
-            "{:>8.3}  {:>20} {:>6} {:>12}  {:>7} {:>7} {:>7} {:>9} {:>8}  {:>20.3e}",
+            "{:>8.3}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7} {:>9} {:>8}  {:>20.3e}",
             r.diameter_um,
             fitted,
             z,

@@ -52,9 +52,21 @@
 //! sample times (the same particles are counted at every one), which a fit weighting each time
 //! by its own standard error, as if independent, would miss. A test checks it against the
 //! spread of the fitted rate over independent seeds.
+//!
+//! **Against the study's `beta`** ([`DecayFit::against_loss_rate`]): the run's
+//! [`Run::loss_rate`] is a ratio over the same particles, `R = sum X_i / sum E_i`, whose
+//! delta-method contributions are `(X_i - R E_i) / sum E` ([`Run::loss_rate_influences`]);
+//! the fit's are `-psi_i / N`. A particle that deposits early lowers the curve and adds a
+//! deposit to `R`, so the two are positively correlated, and the standard error of their
+//! difference is the delta method's over the particles' paired contributions,
+//! `delta_error(-psi_i / N - (X_i - R E_i) / sum E)` ([`delta_error`]), not the two errors
+//! combined as if independent (in a ventilated room of 10 um particles that overstates it
+//! 1.6 times; in a settling box 2.5 times: a test checks the paired error against the spread
+//! of the difference over 400 seeds). `z` is the difference over it, left out when either
+//! estimate rests on no event or has no error.
 
-use crate::run::{Estimate, Run};
-use crate::track::Fate;
+use crate::run::{binomial_error, delta_error, Estimate, Run};
+use crate::track::{Fate, Record};
 
 /// Intervals of a study's decay curve: 41 sample times from the release to the end of the run.
 pub const DECAY_INTERVALS: usize = 40;
@@ -75,6 +87,9 @@ pub struct DecayCurve {
     pub counts: Vec<usize>,
     /// Particles released, `N(0)`.
     pub released: usize,
+    /// The sample times as step numbers: a particle counts at `steps[k]` while it is in the
+    /// air at that step's end.
+    pub steps: Vec<u64>,
 }
 
 /// `ln y = intercept - rate t`, fitted by least squares.
@@ -127,6 +142,26 @@ pub struct DecayFit {
     pub window: [f64; 2],
     /// Sample times fitted.
     pub points: usize,
+    /// The fitted `beta` against the run's own [`Run::loss_rate`] (a study's `beta`), the
+    /// error of the difference paired over the particles.
+    pub against_loss_rate: Comparison,
+}
+
+/// One estimate against another from the same particles: their difference and its standard
+/// error by the delta method over the particles, each particle's contributions to the two
+/// taken together. Both rest on the same particles, so they are correlated and the error of
+/// the difference is not the two errors combined as if independent (it is 0.63 of that in a
+/// ventilated room at 10 um, 0.41 in a ventilated box of settling particles; see the module
+/// docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Comparison {
+    /// The first estimate less the second.
+    pub difference: f64,
+    /// Its standard error, paired over the particles.
+    pub error: f64,
+    /// `difference / error`; `None` when either estimate rests on no event (its value is then
+    /// no measurement to compare) or has no error (nothing left the air in the fit's window).
+    pub z: Option<f64>,
 }
 
 /// The step after which a particle is no longer in the air (`u64::MAX` while airborne at the
@@ -139,6 +174,25 @@ fn leaves_after(fate: Fate, steps: u64) -> u64 {
     }
 }
 
+/// Each particle's influence on the least-squares slope of `ln f_k` against `t_k`,
+/// `psi_i = sum_k w_k (A_ik - f_k) / f_k` with `A_ik = 1` while particle `i` (leaving the air
+/// after step `leaves[i]`) is in the air at step `steps[k]`, and `f_k` the airborne share
+/// there: to first order the slope deviates by `(1 / N) sum_i psi_i` (see the module docs).
+#[must_use]
+pub fn slope_influences(leaves: &[u64], steps: &[u64], weights: &[f64], shares: &[f64]) -> Vec<f64> {
+    leaves
+        .iter()
+        .map(|&leaves| {
+            weights
+                .iter()
+                .zip(shares)
+                .zip(steps)
+                .map(|((w, f), &n)| w * (f64::from(u8::from(leaves > n)) - f) / f)
+                .sum()
+        })
+        .collect()
+}
+
 impl Run {
     /// The airborne share at `intervals + 1` times evenly spread (to whole steps) from the
     /// release to the end of the run (see the [module docs](crate::decay)).
@@ -149,31 +203,47 @@ impl Run {
         let sample_steps: Vec<u64> =
             (0..=intervals).map(|k| (k as u64 * steps + intervals as u64 / 2) / intervals as u64).collect();
         let released = self.records.len();
-        let mut counts = vec![0usize; sample_steps.len()];
-        for r in &self.records {
-            let leaves = leaves_after(r.fate, r.steps);
-            for (c, &n) in counts.iter_mut().zip(&sample_steps) {
-                *c += usize::from(leaves > n);
-            }
-        }
+        let counts = self.airborne_at(&sample_steps);
         let n = released.max(1) as f64;
         let airborne: Vec<f64> = counts.iter().map(|&c| c as f64 / n).collect();
         DecayCurve {
             times: sample_steps.iter().map(|&s| s as f64 * self.dt).collect(),
-            errors: airborne.iter().map(|f| (f * (1.0 - f) / n).sqrt()).collect(),
+            errors: airborne.iter().map(|&f| binomial_error(f, released)).collect(),
+            steps: sample_steps,
             airborne,
             counts,
             released,
         }
     }
 
+    /// The tracked particles in the air at the end of each of `steps`.
+    fn airborne_at(&self, steps: &[u64]) -> Vec<usize> {
+        let mut counts = vec![0usize; steps.len()];
+        for r in &self.records {
+            let leaves = leaves_after(r.fate, r.steps);
+            for (c, &n) in counts.iter_mut().zip(steps) {
+                *c += usize::from(leaves > n);
+            }
+        }
+        counts
+    }
+
     /// The loss rate fitted to `curve` (this run's, from [`Run::decay_curve`]) over the sample
     /// times from the averaging window's start on while at least [`MIN_AIRBORNE`] particles
     /// are in the air, with the delta method's standard error over the particles, and `beta`
     /// with the air-exchange rate `air_exchange` (1/s) taken off (see the
-    /// [module docs](crate::decay)). `None` with fewer than 3 such times.
+    /// [module docs](crate::decay)); compared with the run's [`Run::loss_rate`]. `None` with
+    /// fewer than 3 such times.
+    ///
+    /// # Panics
+    /// If `curve` is not this run's: its release or its counts at the fitted times differ from
+    /// what this run's particles give.
     #[must_use]
     pub fn decay_fit(&self, curve: &DecayCurve, air_exchange: f64) -> Option<DecayFit> {
+        assert!(
+            curve.released == self.records.len() && curve.steps.iter().all(|&n| n <= self.steps()),
+            "the decay curve is not this run's"
+        );
         let from = self.window[0] * (1.0 - 1e-12);
         let mut chosen: Vec<usize> = Vec::new();
         for (k, (&t, &c)) in curve.times.iter().zip(&curve.counts).enumerate() {
@@ -188,38 +258,31 @@ impl Run {
             return None;
         }
         let times: Vec<f64> = chosen.iter().map(|&k| curve.times[k]).collect();
+        let steps: Vec<u64> = chosen.iter().map(|&k| curve.steps[k]).collect();
+        let counts: Vec<usize> = chosen.iter().map(|&k| curve.counts[k]).collect();
+        assert_eq!(self.airborne_at(&steps), counts, "the decay curve is not this run's");
         let shares: Vec<f64> = chosen.iter().map(|&k| curve.airborne[k]).collect();
         let fit = log_linear_fit(&times, &shares)?;
         let weights = slope_weights(&times)?;
-        let sample_steps: Vec<u64> = times.iter().map(|t| (t / self.dt).round() as u64).collect();
-        let (first, last) = (sample_steps[0], sample_steps[sample_steps.len() - 1]);
-        // Each particle's influence on the slope, psi_i = sum_k w_k (A_ik - f_k) / f_k.
-        let (mut spread, mut left, mut deposited) = (0.0, 0usize, 0usize);
-        for r in &self.records {
-            let leaves = leaves_after(r.fate, r.steps);
-            let psi: f64 = weights
-                .iter()
-                .zip(&shares)
-                .zip(&sample_steps)
-                .map(|((w, f), &n)| w * (f64::from(u8::from(leaves > n)) - f) / f)
-                .sum();
-            spread += psi * psi;
-            if leaves > first && leaves <= last {
-                left += 1;
-                deposited += usize::from(matches!(r.fate, Fate::Deposited(_)));
-            }
-        }
+        let leaves: Vec<u64> = self.records.iter().map(|r| leaves_after(r.fate, r.steps)).collect();
         let n = self.records.len() as f64;
-        let error = (spread / (n * (n - 1.0))).sqrt();
-        // With no departure at all, the rate three would give over the window (the rule of
-        // three, as for deposits), else two standard errors above.
-        let bound = |value: f64, events: usize| {
-            if events == 0 {
-                value + 3.0 / (curve.counts[chosen[0]] as f64 * (times[times.len() - 1] - times[0]))
-            } else {
-                value + 2.0 * error
-            }
+        // The rate is minus the slope: particle i moves it by -psi_i / N.
+        let influences: Vec<f64> =
+            slope_influences(&leaves, &steps, &weights, &shares).iter().map(|psi| -psi / n).collect();
+        let error = delta_error(&influences);
+        let (first, last) = (steps[0], steps[steps.len() - 1]);
+        let within = |r: &&Record| {
+            let leaves = leaves_after(r.fate, r.steps);
+            leaves > first && leaves <= last
         };
+        let left = self.records.iter().filter(within).count();
+        let deposited = self.records.iter().filter(within).filter(|r| matches!(r.fate, Fate::Deposited(_))).count();
+        // With no departure (or no deposit) at all, the rate three would give over the
+        // window's airborne particle-seconds (the rule of three, as for deposits), else two
+        // standard errors above.
+        let exposure: f64 =
+            times.windows(2).zip(counts.windows(2)).map(|(t, c)| (t[1] - t[0]) * (c[0] + c[1]) as f64 / 2.0).sum();
+        let bound = |value: f64, events: usize| if events == 0 { 3.0 / exposure } else { value + 2.0 * error };
         let total = Estimate { value: fit.rate, error, events: left, upper_bound: bound(fit.rate, left) };
         let beta_value = fit.rate - air_exchange;
         let beta = Estimate { value: beta_value, error, events: deposited, upper_bound: bound(beta_value, deposited) };
@@ -229,7 +292,21 @@ impl Run {
             intercept: fit.intercept,
             window: [times[0], times[times.len() - 1]],
             points: times.len(),
+            against_loss_rate: self.against_loss_rate(&beta, &influences),
         })
+    }
+
+    /// `estimate` (with its per-particle `influences`) against [`Run::loss_rate`], paired over
+    /// the particles.
+    fn against_loss_rate(&self, estimate: &Estimate, influences: &[f64]) -> Comparison {
+        let study = self.loss_rate();
+        let difference = estimate.value - study.value;
+        let paired: Option<Vec<f64>> = self
+            .loss_rate_influences()
+            .map(|theirs| influences.iter().zip(&theirs).map(|(mine, theirs)| mine - theirs).collect());
+        let error = paired.map_or(estimate.error, |c| delta_error(&c));
+        let resolved = estimate.events > 0 && study.events > 0 && estimate.error > 0.0 && study.error > 0.0;
+        Comparison { difference, error, z: (resolved && error > 0.0).then(|| difference / error) }
     }
 }
 

@@ -64,10 +64,10 @@ pub mod studies;
 mod track;
 
 pub use air::{Aerodynamics, Air};
-pub use decay::{log_linear_fit, DecayCurve, DecayFit, LogLinear};
+pub use decay::{log_linear_fit, Comparison, DecayCurve, DecayFit, LogLinear};
 pub use excursions::{Excursions, Splitting};
 pub use flow::Flow;
 pub use geometry::{Geometry, Orientation, Wall};
-pub use run::{run, run_more, Balance, Estimate, Run};
+pub use run::{binomial_error, delta_error, run, run_more, Balance, Estimate, Run};
 pub use scene::{Drag, Injection, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 pub use track::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};

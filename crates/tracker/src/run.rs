@@ -167,6 +167,32 @@ impl Estimate {
     }
 }
 
+/// The delta method's standard error of an estimate from its independent samples' first-order
+/// contributions `c_i` to its deviation (each sample's influence, summing to zero):
+/// `sqrt(n / (n - 1) sum c_i^2)`; 0 with fewer than two samples. [`Run::loss_rate`]'s error is
+/// this of [`Run::loss_rate_influences`], the decay fit's of its slope's influences (see
+/// [`crate::decay`]).
+#[must_use]
+pub fn delta_error(contributions: &[f64]) -> f64 {
+    let n = contributions.len();
+    if n < 2 {
+        return 0.0;
+    }
+    let sum: f64 = contributions.iter().map(|c| c * c).sum();
+    (sum * n as f64 / (n - 1) as f64).sqrt()
+}
+
+/// The binomial standard error `sqrt(f (1 - f) / n)` of a share `f` of `n` independent
+/// particles (0 with none).
+#[must_use]
+pub fn binomial_error(f: f64, n: usize) -> f64 {
+    if n == 0 {
+        0.0
+    } else {
+        (f * (1.0 - f) / n as f64).sqrt()
+    }
+}
+
 /// Where the injected particles are at the end: the mass balance of a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Balance {
@@ -300,6 +326,24 @@ impl Run {
         let area: f64 = self.walls.iter().map(|w| w.area).sum();
         let k = area / self.volume;
         Estimate { value: v.value * k, error: v.error * k, events: v.events, upper_bound: v.upper_bound * k }
+    }
+
+    /// Each injected particle's first-order contribution to [`Run::loss_rate`] (1/s), in
+    /// injection order: with `beta = R = sum X_i / sum E_i` (`X_i` the particle's deposits
+    /// within the averaging window, `E_i` its exposure there), the delta method's
+    /// `(X_i - R E_i) / sum E`. They sum to zero, and the loss rate's error is their
+    /// [`delta_error`]. Other estimates from the same particles (the decay fit's `beta`) are
+    /// correlated with the loss rate through them: the error of a difference is the
+    /// [`delta_error`] of the differences of the contributions. `None` without exposure.
+    #[must_use]
+    pub fn loss_rate_influences(&self) -> Option<Vec<f64>> {
+        let deposits = |p: &ParticleTally| p.deposited.iter().sum::<f64>();
+        let exposure: f64 = self.particles.iter().map(|p| p.exposure).sum();
+        if exposure.is_nan() || exposure <= 0.0 {
+            return None;
+        }
+        let r = self.particles.iter().map(deposits).sum::<f64>() / exposure;
+        Some(self.particles.iter().map(|p| (deposits(p) - r * p.exposure) / exposure).collect())
     }
 
     /// The walls of one orientation.

@@ -159,15 +159,9 @@ pub struct RoomPoint {
     /// the floor's over x and y, the `x0`/`x1` walls' over y and z.
     pub maps: Vec<Vec<u32>>,
     /// Deposited count and mass (kg) of the tracked particles over the whole run onto the
-    /// floor, the ceiling and the vertical walls.
+    /// floor, the ceiling and the vertical walls: with `balance`'s exhausted and airborne, the
+    /// whole release, exactly.
     pub deposited: [(usize, f64); 3],
-    /// Count and mass (kg) of the tracked particles released, exhausted by ventilation, and
-    /// still in the air at the end: with `deposited`, the whole release, exactly.
-    pub released: (usize, f64),
-    /// Exhausted, count and kg.
-    pub exhausted: (usize, f64),
-    /// In the air at the end, count and kg.
-    pub airborne: (usize, f64),
     /// The airborne share of the release over the run ([`DECAY_INTERVALS`] intervals; see
     /// [`crate::decay`]).
     pub decay: DecayCurve,
@@ -285,9 +279,6 @@ impl RoomStudy {
                         .iter()
                         .fold((0, 0.0), |(n, m), &w| (n + balance.deposited[w], m + balance.deposited_mass[w]))
                 }),
-                released: (balance.injected, balance.injected_mass),
-                exhausted: (balance.exhausted, balance.exhausted_mass),
-                airborne: (balance.airborne, balance.airborne_mass),
                 decay,
                 decay_fit,
                 balance,
