@@ -197,7 +197,7 @@ impl DistributionReport {
         }
         out!(
             "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
-             one run at its midpoint (?: a bin without neighbours). Mass outside the bins, left out: {:.3e}. {PM_DEFINITION}. \
+             one run at its midpoint, where each share is monotonic in d (?: a bin without neighbours). Mass outside the bins, left out: {:.3e}. {PM_DEFINITION}. \
              beta of mass: the loss rate of the airborne mass while its size distribution is the injected one.",
             self.outside_bins * k
         );
