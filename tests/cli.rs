@@ -853,6 +853,8 @@ fn example_size_distributions_parse() {
     std::fs::write(&modes, text).unwrap();
     let report = ok_json(&["room", modes.to_str().unwrap(), "--format", "json", "--no-plot"]);
     assert_eq!(report["distribution"]["bins"].as_array().unwrap().len(), 20);
+    // A run of no time measures no loss rate: none, not 0 +- 0.
+    assert!(report["distribution"]["all"]["beta_per_hour"].is_null(), "{}", report["distribution"]["all"]);
     let classes = dir.join("classes.toml");
     let csv = std::fs::canonicalize("examples/size-classes.csv").unwrap();
     std::fs::write(&classes, format!("[particles]\nsize_bins = {:?}\n[run]\nduration = 0.0\n", csv.to_str().unwrap()))

@@ -29,8 +29,10 @@ pub struct Split {
     pub airborne: Part,
     pub exhausted: Part,
     pub escaped: Part,
-    /// The loss rate of the mass while its size distribution is the injected one...
-    pub beta_per_hour: Measured,
+    /// The deposition loss rate of the mass while its size distribution is the injected
+    /// one, at least (the bins without a beta are the fastest-settling ones)... (`null` when
+    /// no bin's run measured one)
+    pub beta_per_hour: Option<Measured>,
     /// ... over this share of the mass (the bins whose runs measured a beta).
     pub beta_mass_share: f64,
 }
@@ -92,7 +94,7 @@ impl DistributionReport {
             airborne: part(s.airborne),
             exhausted: part(s.exhausted),
             escaped: part(s.escaped),
-            beta_per_hour: Measured::from(s.beta).scaled(3600.0),
+            beta_per_hour: s.beta.map(|b| Measured::from(b).scaled(3600.0)),
             beta_mass_share: s.beta_share,
         };
         // Numbers per room, or as shares of the number in the bins.
@@ -180,7 +182,7 @@ impl DistributionReport {
                 cell(&s.walls),
                 cell(&s.airborne),
                 cell(&s.exhausted),
-                format!("{:.3} +- {:.3}", s.beta_per_hour.value, s.beta_per_hour.error)
+                s.beta_per_hour.as_ref().map_or("none measured".to_string(), beta_cell)
             );
         }
         let partial: Vec<String> = self
@@ -198,7 +200,8 @@ impl DistributionReport {
         out!(
             "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
              one run at its midpoint, where each share is monotonic in d (?: a bin without neighbours). Mass outside the bins, left out: {:.3e}. {PM_DEFINITION}. \
-             beta of mass: the loss rate of the airborne mass while its size distribution is the injected one.",
+             beta of mass: the loss rate of the airborne mass by deposition (not ventilation) while its size \
+             distribution is the injected one; over part of the mass, a lower bound on the whole's.",
             self.outside_bins * k
         );
     }
@@ -223,11 +226,12 @@ impl DistributionReport {
                         p.quadrature.map_or(String::new(), |q| q.to_string()),
                     ]);
                 }
-                row.extend([
-                    s.beta_per_hour.value.to_string(),
-                    s.beta_per_hour.error.to_string(),
-                    s.beta_mass_share.to_string(),
-                ]);
+                let beta = s
+                    .beta_per_hour
+                    .as_ref()
+                    .map_or([String::new(), String::new()], |b| [b.value.to_string(), b.error.to_string()]);
+                row.extend(beta);
+                row.push(s.beta_mass_share.to_string());
                 row
             }),
         )
@@ -276,5 +280,15 @@ impl DistributionReport {
         let y =
             if self.mass_unit == "kg" { "mass per unit ln d in the room (kg)" } else { "share of mass per unit ln d" };
         plot::log_log(path, "Where a size distribution's mass goes", "particle diameter (um)", y, &series)
+    }
+}
+
+/// A rate per hour: with deposit events `value +- error` (fixed-point from 0.1/h), without
+/// its 95 % upper bound.
+fn beta_cell(m: &Measured) -> String {
+    match m.upper_bound {
+        Some(bound) => format!("< {bound:.2e} [0]"),
+        None if m.value.abs() >= 0.1 => format!("{:.3} +- {:.3}", m.value, m.error),
+        None => format!("{:.2e} +- {:.1e}", m.value, m.error),
     }
 }

@@ -578,12 +578,15 @@ pub struct MassSplit {
     pub exhausted: Portion,
     /// Escaped the domain.
     pub escaped: Portion,
-    /// The loss rate of the mass, 1/s: `sum_i M_i beta_i / sum_i M_i`, the rate at which
-    /// deposition removes airborne mass while its size distribution is the injected one
-    /// (deposition then takes the fast-depositing sizes first and the rate falls). Its
-    /// `events` are the runs' together; its error carried from theirs. Only over the bins
-    /// whose run measured a `beta` (see [`MassSplit::beta_share`]).
-    pub beta: Estimate,
+    /// The deposition loss rate of the mass, 1/s: `sum_i M_i beta_i / sum_i M_i`, the rate
+    /// at which deposition (not ventilation) removes airborne mass while its size
+    /// distribution is the injected one (deposition then takes the fast-depositing sizes
+    /// first and the rate falls). Its `events` are the runs' together; its error carried from
+    /// theirs; its upper bound the runs' bounds weighted alike. Only over the bins whose run
+    /// measured a `beta` (see [`MassSplit::beta_share`]): the bins left out are the
+    /// fastest-settling ones, so over all the mass the rate is at least this. None when no
+    /// bin's run measured one.
+    pub beta: Option<Estimate>,
     /// The share of the mass whose bins' runs measured a `beta`: a run whose particles all
     /// settled before its averaging window began has none (coarse particles in a short
     /// room), and its mass is left out of [`MassSplit::beta`].
@@ -674,21 +677,29 @@ pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
     let injected: f64 = weights.iter().sum();
     // Over the bins whose run measured a beta: a run whose particles all deposited before its
     // averaging window has no exposure to measure it by (its upper bound is infinite).
-    let (mut rate, mut variance, mut events, mut measured) = (0.0, 0.0, 0, 0.0);
+    let (mut rate, mut variance, mut events, mut measured, mut bound) = (0.0, 0.0, 0, 0.0, 0.0);
     for (w, f) in weights.iter().zip(fates).filter(|(_, f)| f.beta.upper_bound.is_finite()) {
         rate += w * f.beta.value;
         variance += (w * f.beta.error).powi(2);
         events += f.beta.events;
         measured += w;
+        bound += w * f.beta.upper_bound;
     }
-    let (value, error) = if measured > 0.0 { (rate / measured, variance.sqrt() / measured) } else { (0.0, 0.0) };
+    // The runs' bounds (value plus two errors, or the rule of three without events), weighted
+    // as their values are.
+    let beta = (measured > 0.0).then(|| Estimate {
+        value: rate / measured,
+        error: variance.sqrt() / measured,
+        events,
+        upper_bound: bound / measured,
+    });
     MassSplit {
         injected,
         deposited: [portion(0), portion(1), portion(2)],
         airborne: portion(3),
         exhausted: portion(4),
         escaped: portion(5),
-        beta: Estimate { value, error, events, upper_bound: value + 2.0 * error },
+        beta,
         beta_share: if injected > 0.0 { measured / injected } else { 0.0 },
     }
 }
@@ -922,7 +933,10 @@ mod tests {
         assert!((split.airborne.value - (2.0 * 0.6 + 0.3)).abs() < 1e-12);
         assert!((split.exhausted.value - 0.75).abs() < 1e-12);
         assert!((split.accounted() - split.injected).abs() <= 1e-15 * split.injected);
-        assert!((split.beta.value - 7e-4 / 3.0).abs() < 1e-18);
+        let beta = split.beta.unwrap();
+        assert!((beta.value - 7e-4 / 3.0).abs() < 1e-18);
+        // The runs' upper bounds 1.2e-4 and 6e-4, weighted by 2 and 1: 8.4e-4 / 3.
+        assert!((beta.upper_bound - 8.4e-4 / 3.0).abs() < 1e-18, "{beta:?}");
         assert_eq!(split.beta_share, 1.0);
         // One bin alone has no neighbour to bound its quadrature by.
         assert!(integrate(&bins[..1], &runs[..1], &[2.0]).deposited[0].quadrature.is_nan());
@@ -931,7 +945,11 @@ mod tests {
         let mut unmeasured = runs;
         unmeasured[1].beta = Estimate { value: 0.0, error: 0.0, events: 0, upper_bound: f64::INFINITY };
         let split = integrate(&bins, &unmeasured, &[2.0, 1.0]);
-        assert!((split.beta.value - 1e-4).abs() < 1e-18 && (split.beta_share - 2.0 / 3.0).abs() < 1e-15);
+        assert!((split.beta.unwrap().value - 1e-4).abs() < 1e-18 && (split.beta_share - 2.0 / 3.0).abs() < 1e-15);
+        // With no run measuring one, the mass has no beta: none, not 0 +- 0.
+        unmeasured[0].beta = unmeasured[1].beta;
+        let split = integrate(&bins, &unmeasured, &[2.0, 1.0]);
+        assert_eq!((split.beta, split.beta_share), (None, 0.0));
     }
 
     /// The quadrature bound holds: a smooth settling-like share `f(d) = 1 - exp(-(d / 3 um)^2)`
