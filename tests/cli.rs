@@ -878,3 +878,34 @@ fn a_distribution_too_coarse_for_the_room_names_its_modes() {
     .unwrap();
     user_error(&["room", scene.to_str().unwrap(), "--no-plot"], "`particles.modes` = ");
 }
+
+/// Shares are of the distribution's whole mass, in the bins and beyond them: a mode of MMD
+/// 3 um and `sigma_g` 2 over bins from 0.75 to 12 um (two `sigma_g` either side) holds
+/// `Phi(2) - Phi(-2)` = 95.4500 % of its mass in the bins and 4.5500 % beyond them, whatever
+/// the bins hold. A range that misses the mode is an error naming `bin_range`.
+#[test]
+fn distribution_shares_are_of_the_whole_mass_and_a_missed_mode_is_an_error() {
+    let dir = scratch("distribution-shares");
+    let scene = |name: &str, range: &str| {
+        let path = dir.join(name);
+        std::fs::write(
+            &path,
+            format!(
+                "[room]\nsize = [1.0, 1.0, 1.0]\n[[particles.modes]]\nmass_median = 3e-6\ngeometric_sd = 2.0\n\
+                 [particles]\ncount = 10\ntarget_error = 0.0\nbins = 4\nbin_range = {range}\n[run]\nduration = 0.0\n"
+            ),
+        )
+        .unwrap();
+        path
+    };
+    let path = scene("partial.toml", "[0.75e-6, 12e-6]");
+    let d = ok_json(&["room", path.to_str().unwrap(), "--format", "json", "--no-plot"])["distribution"].clone();
+    assert_eq!(d["mass_unit"], "share of the distribution's mass");
+    assert!((d["outside_bins"].as_f64().unwrap() - 0.045_500).abs() < 1e-6, "{}", d["outside_bins"]);
+    assert!((d["all"]["injected"].as_f64().unwrap() - 0.954_500).abs() < 1e-6, "{}", d["all"]["injected"]);
+    let missed = scene("missed.toml", "[0.01e-6, 0.05e-6]");
+    user_error(
+        &["room", missed.to_str().unwrap(), "--no-plot"],
+        "missed.toml line 10: the bins hold 0.000 % of the modes' mass, less than the 50 % needed",
+    );
+}

@@ -60,9 +60,10 @@ pub struct BinRow {
 /// The distribution's answers.
 #[derive(Serialize)]
 pub struct DistributionReport {
-    /// "kg" (in the room: concentrations times its volume) or "share of the injected mass".
-    pub mass_unit: &'static str,
-    /// Mass of the modes outside the bins, left out of the splits.
+    /// "kg" (in the room: concentrations times its volume) or "share of the distribution's
+    /// mass" (of the modes' whole mass, in the bins and outside them).
+    pub mass_unit: MassUnit,
+    /// Mass of the modes beyond the bins' range, left out of the splits.
     pub outside_bins: f64,
     pub all: Split,
     pub pm10: Split,
@@ -72,6 +73,17 @@ pub struct DistributionReport {
     pub pm_definition: &'static str,
 }
 
+/// What the masses are in.
+#[derive(Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum MassUnit {
+    /// kg in the room: the modes' concentrations times its volume.
+    #[serde(rename = "kg")]
+    Kg,
+    /// Shares of the distribution's whole mass (in the bins and beyond them).
+    #[serde(rename = "share of the distribution's mass")]
+    Share,
+}
+
 /// How PM2.5 and PM10 are cut, for the outputs.
 pub const PM_DEFINITION: &str = "PM2.5 and PM10: mass of particles of aerodynamic diameter (unit density, with slip \
 correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341, ISO 7708)";
@@ -79,8 +91,11 @@ correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards
 impl DistributionReport {
     /// The report of `balance` in a room of `volume` (m^3).
     pub fn new(balance: &MassBalance, volume: f64) -> Self {
-        // Masses in kg in the room, or as shares of the injected mass in the bins.
-        let scale = if balance.absolute { volume } else { 1.0 / balance.all.injected.max(f64::MIN_POSITIVE) };
+        // Masses in kg in the room, or as shares of the distribution's mass: in the bins and
+        // beyond them (shares of the bins' mass alone would make the mass beyond them any
+        // multiple of it).
+        let total = balance.all.injected + balance.outside;
+        let scale = if balance.absolute { volume } else { 1.0 / total.max(f64::MIN_POSITIVE) };
         let part = |p: Portion| Part {
             value: p.value * scale,
             error: p.error * scale,
@@ -124,7 +139,7 @@ impl DistributionReport {
             })
             .collect();
         Self {
-            mass_unit: if balance.absolute { "kg" } else { "share of the injected mass" },
+            mass_unit: if balance.absolute { MassUnit::Kg } else { MassUnit::Share },
             outside_bins: balance.outside * scale,
             all: split(&balance.all),
             pm10: split(&balance.pm[1]),
@@ -140,10 +155,10 @@ impl DistributionReport {
 
     /// The table under the per-size one.
     pub fn table(&self) {
-        let absolute = self.mass_unit == "kg";
+        let absolute = self.mass_unit == MassUnit::Kg;
         // Micrograms read better than kilograms.
         let k = if absolute { 1e9 } else { 1.0 };
-        let unit = if absolute { "ug in the room" } else { "share of the injected mass" };
+        let unit = if absolute { "ug in the room" } else { "share of the distribution's mass" };
         let densities: Vec<String> = {
             let mut d: Vec<f64> = Vec::new();
             self.bins.iter().for_each(|b| {
@@ -199,7 +214,7 @@ impl DistributionReport {
         }
         out!(
             "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
-             one run at its midpoint, where each share is monotonic in d (?: a bin without neighbours). Mass outside the bins, left out: {:.3e}. {PM_DEFINITION}. \
+             one run at its midpoint, where each share is monotonic in d (?: a bin without neighbours). Mass of the modes beyond the bins' range, left out: {:.3e}. {PM_DEFINITION}. \
              beta of mass: the loss rate of the airborne mass by deposition (not ventilation) while its size \
              distribution is the injected one; over part of the mass, a lower bound on the whole's.",
             self.outside_bins * k
@@ -277,8 +292,11 @@ impl DistributionReport {
                 series.push(curve("exhausted", per_ln_d(&|b| b.exhausted), 3));
             }
         }
-        let y =
-            if self.mass_unit == "kg" { "mass per unit ln d in the room (kg)" } else { "share of mass per unit ln d" };
+        let y = if self.mass_unit == MassUnit::Kg {
+            "mass per unit ln d in the room (kg)"
+        } else {
+            "share of mass per unit ln d"
+        };
         plot::log_log(path, "Where a size distribution's mass goes", "particle diameter (um)", y, &series)
     }
 }

@@ -470,6 +470,13 @@ fn check_transient(path: &Path, transient: f64) -> Result<(), Error> {
     }
 }
 
+/// Bins holding less of the modes' mass than this are an error: the answers would be of a
+/// sliver of the distribution.
+const MIN_BINNED_SHARE: f64 = 0.5;
+
+/// Bins holding less of the modes' mass than this are warned of.
+const WARN_BINNED_SHARE: f64 = 0.99;
+
 /// The size distribution of a room scene's `[particles]`: its `modes` or its `size_bins`
 /// file, or none. A mode's density defaults to `particles.density`, and its amount to a share
 /// of 1 (of number for a count median, of mass for a mass median). Errors name the file, the
@@ -578,9 +585,30 @@ fn distribution(
             size_classes(&file, density).map_err(|e| at(name.span().start, format!("`particles.size_bins`: {e}")))?,
         )
     };
-    distribution
+    let (bins, outside) = distribution
         .bins(air)
         .map_err(|e| at(offset, format!("`particles.{}` = {} {}", e.field, e.value, e.requirement)))?;
+    // Modes the bins miss: their mass is left out of every answer.
+    let inside: f64 = bins.iter().map(|b| b.mass).sum();
+    let binned = inside / (inside + outside);
+    let range = particles.bin_range.as_ref().map_or(offset, |r| r.span().start);
+    if binned < MIN_BINNED_SHARE {
+        return Err(at(
+            range,
+            format!(
+                "the bins hold {:.3} % of the modes' mass, less than the {} % needed: widen `particles.bin_range`",
+                100.0 * binned,
+                100.0 * MIN_BINNED_SHARE
+            ),
+        ));
+    }
+    if binned < WARN_BINNED_SHARE {
+        eprintln!(
+            "depo: warning: {}: the bins hold {:.1} % of the modes' mass; the rest is left out of the mass balance",
+            path.display(),
+            100.0 * binned
+        );
+    }
     Ok(Some(distribution))
 }
 
