@@ -746,6 +746,25 @@ fn room_reports_a_size_distribution_mass_balance() {
     assert!(d["all"]["exhausted"]["value"].as_f64().unwrap() > 0.0);
     let figure = std::fs::read_to_string(plots.join("room-distribution.svg")).unwrap();
     assert!(legend_y(&figure, "injected (1500 kg/m^3)") > 500.0);
+    // Each run says its density; the figures draw Lai & Nazaroff for each density and label
+    // depo's points and decay curves with it; the deposition maps' names carry it.
+    let sizes = report["sizes"].as_array().unwrap();
+    assert_eq!((sizes[0]["density"].as_f64(), sizes[4]["density"].as_f64()), (Some(1500.0), Some(2500.0)));
+    let deposition = std::fs::read_to_string(plots.join("room-deposition.svg")).unwrap();
+    for rho in [1500, 2500] {
+        assert!(deposition.contains(&format!("floor (Lai &amp; Nazaroff, {rho} kg/m^3")), "{rho}");
+        assert!(deposition.contains(&format!("floor, {rho} kg/m^3 (depo, +- 1 s.e.)")), "{rho}");
+    }
+    let beta = std::fs::read_to_string(plots.join("room-beta.svg")).unwrap();
+    assert!(beta.contains("Lai &amp; Nazaroff (2000), 2500 kg/m^3"));
+    let decay = std::fs::read_to_string(plots.join("room-decay.svg")).unwrap();
+    let first = (sizes[0]["diameter_um"].as_f64().unwrap() * 1e4).round() / 1e4;
+    assert!(decay.contains(&format!("{first} um, 1500 kg/m^3 (depo")), "{first}");
+    assert!(plots.join(format!("room-map-floor-{first}um-1500kgm3.csv")).exists(), "{first}");
+    let maps = std::fs::read_dir(&plots)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().starts_with("room-map-"));
+    assert_eq!(maps.count(), 8 * 6, "a map per bin and wall");
     // The CSV: one row per class, the same numbers.
     let csv =
         String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]).stdout).unwrap();
@@ -757,6 +776,7 @@ fn room_reports_a_size_distribution_mass_balance() {
     assert!(lines[3].starts_with("PM2.5,"));
     let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
     assert!(table.contains("Size distribution: 8 bins (density 1500, 2500 kg/m^3)"), "{table}");
+    assert_eq!(table.matches("particle density 2500 kg/m^3:").count(), 2, "in both per-size tables: {table}");
 }
 
 /// Measured size classes from a CSV file beside the scene: by edges, or by midpoints with

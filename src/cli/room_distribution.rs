@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use depo::tracker::distribution::{MassBalance, MassSplit, Portion};
+use depo::tracker::distribution::{first_seen, MassBalance, MassSplit, Portion};
 use serde::Serialize;
 
 use super::plot::{self, Series};
@@ -159,15 +159,8 @@ impl DistributionReport {
         // Micrograms read better than kilograms.
         let k = if absolute { 1e9 } else { 1.0 };
         let unit = if absolute { "ug in the room" } else { "share of the distribution's mass" };
-        let densities: Vec<String> = {
-            let mut d: Vec<f64> = Vec::new();
-            self.bins.iter().for_each(|b| {
-                if !d.contains(&b.density) {
-                    d.push(b.density)
-                }
-            });
-            d.iter().map(|d| format!("{d}")).collect()
-        };
+        let densities: Vec<String> =
+            first_seen(self.bins.iter().map(|b| b.density)).iter().map(f64::to_string).collect();
         out!(
             "Size distribution: {} bins (density {} kg/m^3), each run at its geometric midpoint; mass ({unit}):",
             self.bins.len(),
@@ -256,12 +249,7 @@ impl DistributionReport {
     /// bin's diameter; one set of curves per density (the first solid, the others dashed).
     pub fn plot(&self, path: &Path) -> Result<(), Error> {
         let mut series = Vec::new();
-        let mut densities: Vec<f64> = Vec::new();
-        self.bins.iter().for_each(|b| {
-            if !densities.contains(&b.density) {
-                densities.push(b.density);
-            }
-        });
+        let densities = first_seen(self.bins.iter().map(|b| b.density));
         for &rho in &densities {
             let bins: Vec<&BinRow> = self.bins.iter().filter(|b| b.density == rho).collect();
             let label = |what: &str| {

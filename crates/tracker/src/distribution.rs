@@ -419,12 +419,7 @@ impl Distribution {
         let cuts = |density: f64| PM_CUTS.map(|c| diameter_of_aerodynamic(c, density, air));
         match self {
             Self::Classes(classes) => {
-                let mut densities: Vec<f64> = Vec::new();
-                for c in classes {
-                    if !densities.contains(&c.density) {
-                        densities.push(c.density);
-                    }
-                }
+                let densities = first_seen(classes.iter().map(|c| c.density));
                 let mut bins = Vec::new();
                 for &rho in &densities {
                     let cut = cuts(rho);
@@ -458,12 +453,7 @@ impl Distribution {
                         }
                     })
                     .collect();
-                let mut densities: Vec<f64> = Vec::new();
-                for m in modes {
-                    if !densities.contains(&m.density) {
-                        densities.push(m.density);
-                    }
-                }
+                let densities = first_seen(modes.iter().map(|m| m.density));
                 // Each density's bins span its own modes, unless a range is given.
                 let edges = |rho: f64| -> Vec<f64> {
                     let [lo, hi] = range.unwrap_or_else(|| {
@@ -512,6 +502,18 @@ impl Distribution {
             }
         }
     }
+}
+
+/// The distinct densities (or any values) of `values`, in the order they first come.
+#[must_use]
+pub fn first_seen(values: impl IntoIterator<Item = f64>) -> Vec<f64> {
+    let mut seen: Vec<f64> = Vec::new();
+    for v in values {
+        if !seen.contains(&v) {
+            seen.push(v);
+        }
+    }
+    seen
 }
 
 fn positive(field: &str, v: f64) -> Result<(), SceneError> {
