@@ -834,7 +834,7 @@ fn size_distribution_errors_name_the_file_line_and_key() {
     check(
         "narrow.toml",
         &format!("{mode}[[particles.modes]]\ncount_median = 1e-6\ngeometric_sd = 0.5\n"),
-        "narrow.toml line 4: `particles.modes[1].geometric_sd` = 0.5 must be finite and >= 1",
+        "narrow.toml line 4: `particles.modes[1].geometric_sd` = 0.5 must be from 1 to 5",
     );
     check(
         "medians.toml",

@@ -61,8 +61,12 @@ pub const PM_CUTS: [f64; 2] = [2.5e-6, 10e-6];
 /// The density that defines the aerodynamic diameter, kg/m^3.
 pub const UNIT_DENSITY: f64 = 1000.0;
 
-/// Bins per mode unless given.
+/// Bins per density unless given (the modes of one density share them).
 pub const DEFAULT_BINS: usize = 12;
+
+/// The largest geometric standard deviation a mode may have. Measured aerosol modes stay
+/// well below (2 to 3 is broad); at 30, `sigma_g^3` takes the bins to 3e11 m.
+pub const MAX_GEOMETRIC_SD: f64 = 5.0;
 
 /// The Hatch-Choate equation (Hinds 1999, Sec. 4.5): the median of the `q`-th moment
 /// distribution of a lognormal count distribution with count median `count_median` and
@@ -181,7 +185,8 @@ impl Amount {
 pub struct Mode {
     /// Its count or mass median diameter.
     pub median: Median,
-    /// Geometric standard deviation `sigma_g >= 1` (the same for number and mass).
+    /// Geometric standard deviation, from 1 to [`MAX_GEOMETRIC_SD`] (the same for number and
+    /// mass).
     pub geometric_sd: f64,
     /// Particle density, kg/m^3.
     pub density: f64,
@@ -215,8 +220,8 @@ impl Mode {
             Median::Mass(d) => ("mass_median", d),
         };
         positive(key, median)?;
-        if !(self.geometric_sd.is_finite() && self.geometric_sd >= 1.0) {
-            return Err(SceneError::new("geometric_sd", self.geometric_sd, "must be finite and >= 1"));
+        if !((1.0..=MAX_GEOMETRIC_SD).contains(&self.geometric_sd)) {
+            return Err(SceneError::new("geometric_sd", self.geometric_sd, "must be from 1 to 5"));
         }
         positive("density", self.density)?;
         let key = match self.amount {
@@ -399,8 +404,14 @@ impl Distribution {
                     if !(c.density.is_finite() && c.density > 0.0) {
                         return Err(bad("density", c.density, "must be finite and positive"));
                     }
-                    if i > 0 && c.lower < classes[i - 1].upper * (1.0 - 1e-9) {
-                        return Err(bad("lower", c.lower, "must not be below the previous class's upper edge"));
+                    // Classes of one density must not overlap; another density's may.
+                    let previous = classes[..i].iter().rev().find(|p| p.density == c.density);
+                    if previous.is_some_and(|p| c.lower < p.upper * (1.0 - 1e-9)) {
+                        return Err(bad(
+                            "lower",
+                            c.lower,
+                            "must not be below the upper edge of the previous class of its density",
+                        ));
                     }
                 }
                 if classes.iter().all(|c| c.amount == 0.0) {
@@ -990,6 +1001,27 @@ mod tests {
         assert!((0.4..0.6).contains(&ratio), "{ratio}");
     }
 
+    /// Classes of two densities may cover the same sizes; classes of one density may not
+    /// overlap, whatever comes between them.
+    #[test]
+    fn classes_overlap_only_across_densities() {
+        let class = |lower: f64, upper: f64, density: f64| SizeClass {
+            lower,
+            upper,
+            amount: 1e-9,
+            quantity: Quantity::Mass,
+            density,
+        };
+        let ok = Distribution::Classes(vec![class(1e-6, 2e-6, 1000.0), class(1e-6, 2e-6, 2000.0)]);
+        assert!(ok.validate().is_ok());
+        let overlap = Distribution::Classes(vec![
+            class(1e-6, 2e-6, 1000.0),
+            class(3e-6, 4e-6, 2000.0),
+            class(1.5e-6, 3e-6, 1000.0),
+        ]);
+        assert_eq!(overlap.validate().unwrap_err().field, "size_bins[2].lower");
+    }
+
     /// Modes mixing shares of number and of mass, or shares and concentrations, are errors
     /// naming them; so is a mode's bad value, by its index and key.
     #[test]
@@ -1003,6 +1035,10 @@ mod tests {
         assert_eq!(modes(vec![mode, absolute]).validate().unwrap_err().field, "modes");
         let narrow = Mode { geometric_sd: 0.5, ..mode };
         assert_eq!(modes(vec![mode, narrow]).validate().unwrap_err().field, "modes[1].geometric_sd");
+        // sigma_g 30 would take the bins to 3e11 m; 5 is the most.
+        let broad = Mode { geometric_sd: 30.0, ..mode };
+        assert_eq!(modes(vec![mode, broad]).validate().unwrap_err().field, "modes[1].geometric_sd");
+        assert!(modes(vec![Mode { geometric_sd: 5.0, ..mode }]).validate().is_ok());
         assert!(modes(vec![mode, mode]).validate().is_ok());
     }
 }
