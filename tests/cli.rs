@@ -859,6 +859,13 @@ fn size_distribution_errors_name_the_file_line_and_key() {
         "[particles]\nsize_bins = \"bad.csv\"\n",
         "bad.csv line 3: upper = 0.000002 must be finite and above the lower edge",
     );
+    // Midpoints 1, 2, 8 um would give the middle class edges 1.41 and 4 um, run at 2.38 um.
+    std::fs::write(dir.join("uneven.csv"), "diameter_um,mass\n1,1e-9\n2,1e-9\n8,1e-9\n").unwrap();
+    check(
+        "uneven.toml",
+        "[particles]\nsize_bins = \"uneven.csv\"\n",
+        "uneven.csv line 4: `diameter_um` must be evenly spaced in ln d (ratio 4 here, 2 at first)",
+    );
     std::fs::write(dir.join("header.csv"), "size,mass\n1e-6,1e-9\n").unwrap();
     check("header.toml", "[particles]\nsize_bins = \"header.csv\"\n", "line 2: `particles.size_bins`");
 }

@@ -612,9 +612,13 @@ fn distribution(
     Ok(Some(distribution))
 }
 
+/// How far (relative to the first step) the steps in `ln d` between a CSV's midpoints may
+/// differ: instruments' midpoints are rounded to a few digits.
+const MIDPOINT_SPACING: f64 = 0.02;
+
 /// The size classes of a CSV file: a header naming the edges (`lower` and `upper`, m, or
 /// `lower_um` and `upper_um`) or the midpoints (`diameter` or `diameter_um`, at least two, in
-/// increasing order: edges at the geometric means between them), and `number` (1/m^3) or
+/// increasing order and evenly spaced in `ln d`: edges at the geometric means between them), and `number` (1/m^3) or
 /// `mass` (kg/m^3) per class; a `density` column (kg/m^3) is optional, `density` standing in.
 /// `#` starts a comment.
 fn size_classes(path: &Path, density: f64) -> Result<Vec<SizeClass>, Error> {
@@ -685,6 +689,20 @@ fn size_classes(path: &Path, density: f64) -> Result<Vec<SizeClass>, Error> {
             }
         }
         let mids: Vec<f64> = rows.iter().map(|r| r.1.lower).collect();
+        // Each class runs at the geometric mean of its edges: that is its given midpoint only
+        // where the midpoints are evenly spaced in ln d (to rounding).
+        let step = (mids[1] / mids[0]).ln();
+        for (i, w) in mids.windows(2).enumerate().skip(1) {
+            if ((w[1] / w[0]).ln() / step - 1.0).abs() > MIDPOINT_SPACING {
+                return Err(format!(
+                    "{name} line {}: `{key}` must be evenly spaced in ln d (ratio {} here, {} at first); \
+                     give uneven classes by their edges, `lower` and `upper`",
+                    rows[i + 1].0,
+                    w[1] / w[0],
+                    mids[1] / mids[0]
+                ));
+            }
+        }
         let n = mids.len();
         let inner: Vec<f64> = mids.windows(2).map(|w| (w[0] * w[1]).sqrt()).collect();
         for (i, (_, class)) in rows.iter_mut().enumerate() {
