@@ -12,7 +12,8 @@
 //! ([`Distribution::bins`]): the modes of one particle density share [`DEFAULT_BINS`] equal
 //! steps in `ln d` from their smallest count median over `sigma_g^3` to their largest mass
 //! median times `sigma_g^3` (more than 99.8 % of each mode's number and of its mass), or
-//! the range given; a class list's bins are its classes. Each
+//! the range given; a class list's bins are its classes. A bin holding next to none of its
+//! density's number and mass ([`NEGLIGIBLE`]) is not run. Each
 //! bin's number and mass are integrated exactly (for a mode from its lognormal distribution
 //! function; in a class, number or mass as given, spread uniformly in `ln d`), and the bin's
 //! particles all share the fate of one run at its geometric midpoint `sqrt(lower upper)`:
@@ -63,6 +64,9 @@ pub const UNIT_DENSITY: f64 = 1000.0;
 
 /// Bins per density unless given (the modes of one density share them).
 pub const DEFAULT_BINS: usize = 12;
+
+/// A bin holding no more than this share of its density's number and of its mass is not run.
+pub const NEGLIGIBLE: f64 = 1e-9;
 
 /// The largest geometric standard deviation a mode may have. Measured aerosol modes stay
 /// well below (2 to 3 is broad); at 30, `sigma_g^3` takes the bins to 3e11 m.
@@ -484,6 +488,9 @@ impl Distribution {
                 let mut inside = 0.0;
                 for &rho in &densities {
                     let cut = cuts(rho);
+                    // The density's number and mass, to tell the bins that hold none of them.
+                    let own = modes.iter().zip(&totals).filter(|(m, _)| m.density == rho);
+                    let (number_total, mass_total) = own.fold((0.0, 0.0), |(n, m), (_, t)| (n + t.0, m + t.1));
                     for w in edges(rho).windows(2) {
                         let (a, b) = (w[0], w[1]);
                         let mut bin = Bin {
@@ -503,6 +510,11 @@ impl Distribution {
                             for (k, &c) in cut.iter().enumerate() {
                                 bin.pm_mass[k] += mass * (below(b.min(c)) - below(a)).max(0.0);
                             }
+                        }
+                        // A bin with next to nothing in it is not run (sigma_g 1 puts all in
+                        // one of them); its crumbs count as outside.
+                        if bin.mass <= NEGLIGIBLE * mass_total && bin.number <= NEGLIGIBLE * number_total {
+                            continue;
                         }
                         inside += bin.mass;
                         bins.push(bin);
@@ -1020,6 +1032,26 @@ mod tests {
             class(1.5e-6, 3e-6, 1000.0),
         ]);
         assert_eq!(overlap.validate().unwrap_err().field, "size_bins[2].lower");
+    }
+
+    /// A monodisperse mode (sigma_g 1) puts all its particles in one of its 12 bins: only that
+    /// one is run, holding all the mass; two far-apart modes of one density leave the bins
+    /// between them empty, and those are not run either.
+    #[test]
+    fn empty_bins_are_not_run() {
+        let mode =
+            Mode { median: Median::Mass(2e-6), geometric_sd: 1.0, density: 1000.0, amount: Amount::MassShare(1.0) };
+        let one = Distribution::Modes { modes: vec![mode], bins: DEFAULT_BINS, range: None };
+        let (bins, outside) = one.bins(&Air::standard()).unwrap();
+        assert_eq!(bins.len(), 1, "{bins:?}");
+        assert!((bins[0].mass - 1.0).abs() < 1e-12 && outside < 1e-12);
+        // 2 and 100 um, sigma_g 1.1, over 12 bins from 1.46 to 133 um (0.38 in ln d each); the
+        // modes (3 ln sigma_g = 0.29 either side) fill two or three bins each, of the twelve.
+        let far = Mode { median: Median::Mass(100e-6), ..mode };
+        let narrow = |m: Mode| Mode { geometric_sd: 1.1, ..m };
+        let two = Distribution::Modes { modes: vec![narrow(mode), narrow(far)], bins: 12, range: None };
+        let (bins, _) = two.bins(&Air::standard()).unwrap();
+        assert!(bins.len() <= 6, "{}", bins.len());
     }
 
     /// Modes mixing shares of number and of mass, or shares and concentrations, are errors
