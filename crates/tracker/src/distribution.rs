@@ -11,8 +11,9 @@
 //! A room study tracks one size at a time, so a distribution is cut into bins in `ln d`
 //! ([`Distribution::bins`]): the modes of one particle density share [`DEFAULT_BINS`] equal
 //! steps in `ln d` from their smallest count median over `sigma_g^3` to their largest mass
-//! median times `sigma_g^3` (more than 99.8 % of each mode's number and of its mass), or
-//! the range given; a class list's bins are its classes. A bin holding next to none of its
+//! median times `sigma_g^3` (for a mode alone, from 3 standard deviations below the median
+//! to `3 + 3 ln sigma_g` above it for its number, and the mirror for its mass: at least
+//! 99.73 % of each, more than 99.8 % for `sigma_g` above 1.08), or the range given; a class list's bins are its classes. A bin holding next to none of its
 //! density's number and mass ([`NEGLIGIBLE`]) is not run. Each
 //! bin's number and mass are integrated exactly (for a mode from its lognormal distribution
 //! function; in a class, number or mass as given, spread uniformly in `ln d`), and the bin's
