@@ -744,6 +744,10 @@ fn room_reports_a_size_distribution_mass_balance() {
     }
     assert!(d["pm2_5"]["injected"].as_f64() < d["pm10"]["injected"].as_f64());
     assert!(d["all"]["exhausted"]["value"].as_f64().unwrap() > 0.0);
+    // Nothing escapes a room: every bin's 60 particles bound it by the rule of three, 3 / 60.
+    let escaped = &d["all"]["escaped"];
+    assert_eq!(escaped["value"], 0.0);
+    assert!((escaped["unseen_bound"].as_f64().unwrap() / injected - 0.05).abs() < 1e-12, "{escaped}");
     let figure = std::fs::read_to_string(plots.join("room-distribution.svg")).unwrap();
     assert!(legend_y(&figure, "injected (1500 kg/m^3)") > 500.0);
     // Each run says its density; the figures draw Lai & Nazaroff for each density and label
@@ -770,7 +774,7 @@ fn room_reports_a_size_distribution_mass_balance() {
         String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]).stdout).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 4, "{csv}");
-    assert!(lines[0].starts_with("class,injected,floor,floor_error,floor_quadrature,"), "{csv}");
+    assert!(lines[0].starts_with("class,injected,floor,floor_error,floor_quadrature,floor_unseen_bound,"), "{csv}");
     let floor: f64 = lines[1].split(',').nth(2).unwrap().parse().unwrap();
     assert_eq!(floor, d["all"]["floor"]["value"].as_f64().unwrap());
     assert!(lines[3].starts_with("PM2.5,"));

@@ -17,6 +17,9 @@ pub struct Part {
     pub value: f64,
     pub error: f64,
     pub quadrature: Option<f64>,
+    /// What the bins whose run saw no particle in this fate (counted 0) may hold: the rule of
+    /// three's 95 % bound, summed (0 when every run saw it).
+    pub unseen_bound: f64,
 }
 
 /// Where one class of the mass went, in [`DistributionReport::mass_unit`].
@@ -100,6 +103,7 @@ impl DistributionReport {
             value: p.value * scale,
             error: p.error * scale,
             quadrature: p.quadrature.is_finite().then_some(p.quadrature * scale),
+            unseen_bound: p.unseen_bound * scale,
         };
         let split = |s: &MassSplit| Split {
             injected: s.injected * scale,
@@ -205,6 +209,23 @@ impl DistributionReport {
                 partial.join(", ")
             );
         }
+        let unseen: Vec<String> = [
+            ("floor", &self.all.floor),
+            ("ceiling", &self.all.ceiling),
+            ("walls", &self.all.walls),
+            ("airborne", &self.all.airborne),
+            ("exhausted", &self.all.exhausted),
+        ]
+        .into_iter()
+        .filter(|(_, p)| p.unseen_bound > 0.0)
+        .map(|(name, p)| format!("{name} < {:.1e}", p.unseen_bound * k))
+        .collect();
+        if !unseen.is_empty() {
+            out!(
+                "Bins whose run had no particle in a fate count 0 there; by the rule of three (95 %) they hold at most: {}.",
+                unseen.join(", ")
+            );
+        }
         out!(
             "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
              one run at its midpoint, where each share is monotonic in d (?: a bin without neighbours). Mass of the modes beyond the bins' range, left out: {:.3e}. {PM_DEFINITION}. \
@@ -219,7 +240,12 @@ impl DistributionReport {
         let parts = ["floor", "ceiling", "walls", "airborne", "exhausted"];
         let mut header = vec!["class".to_string(), "injected".to_string()];
         for p in parts {
-            header.extend([p.to_string(), format!("{p}_error"), format!("{p}_quadrature")]);
+            header.extend([
+                p.to_string(),
+                format!("{p}_error"),
+                format!("{p}_quadrature"),
+                format!("{p}_unseen_bound"),
+            ]);
         }
         header.extend(["beta_per_hour".to_string(), "beta_error".to_string(), "beta_mass_share".to_string()]);
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
@@ -232,6 +258,7 @@ impl DistributionReport {
                         p.value.to_string(),
                         p.error.to_string(),
                         p.quadrature.map_or(String::new(), |q| q.to_string()),
+                        p.unseen_bound.to_string(),
                     ]);
                 }
                 let beta = s

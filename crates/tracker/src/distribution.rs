@@ -34,7 +34,8 @@
 //! across a bin, like the walls' or the airborne one, may exceed it there), and a loose one:
 //! where `f` is smooth the midpoint error is second order, far smaller (0.0013 under a bound
 //! of 0.32 in the test on 8 bins). Narrower bins shrink it. A fate no particle of a bin's run
-//! took counts 0 with no error for that bin.
+//! took counts 0 with no error for that bin; the rule of three bounds what it may hold there,
+//! `M_i 3 / n_i` at 95 % ([`Portion::unseen_bound`]).
 //!
 //! ## PM2.5 and PM10
 //! PM2.5 and PM10 are the mass of particles of aerodynamic diameter below 2.5 um and 10 um.
@@ -589,6 +590,10 @@ pub struct Portion {
     /// The bound on the quadrature's error where each fate's share is monotonic across the
     /// bins (see the module docs); NaN where a bin with mass has no neighbour to bound it by.
     pub quadrature: f64,
+    /// The bins whose run had no particle in this fate count 0 with no error; by the rule of
+    /// three, a 95 % upper bound on what each holds is `M_i 3 / n_i`: their sum (0 when every
+    /// bin's run saw the fate).
+    pub unseen_bound: f64,
 }
 
 /// Where a distribution's mass (or its PM2.5 or PM10 part) went.
@@ -645,6 +650,12 @@ pub struct MassBalance {
     pub absolute: bool,
 }
 
+/// The variance of a share `f` of `n` independent particles, `f (1 - f) / n`.
+#[must_use]
+pub fn binomial_variance(f: f64, n: f64) -> f64 {
+    f * (1.0 - f) / n
+}
+
 /// The bound on `|f(d) - f_i|` across a bin whose run found the share `f_i`, from its
 /// neighbours' shares, where `f` is monotonic from one neighbour's midpoint to the other's:
 /// within the bin `f` lies between `f_i` and each neighbour's, so the full step to the
@@ -689,8 +700,12 @@ pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
         let mut variance = 0.0;
         for i in 0..n {
             let (w, f) = (weights[i], shares[i][k]);
+            let n = fates[i].particles.max(1) as f64;
             p.value += w * f;
-            variance += w * w * f * (1.0 - f) / fates[i].particles.max(1) as f64;
+            variance += w * w * binomial_variance(f, n);
+            if f == 0.0 {
+                p.unseen_bound += w * 3.0 / n;
+            }
             p.quadrature += match quadrature_bound(f, neighbours(i).map(|j| shares[j][k])) {
                 Some(s) => w * s,
                 None if w > 0.0 => f64::NAN,
@@ -952,6 +967,11 @@ mod tests {
         assert!((floor.value - 0.6).abs() < 1e-12, "{floor:?}");
         assert!((floor.error - 0.077_459_7).abs() < 1e-6, "{floor:?}");
         assert!((floor.quadrature - 1.2).abs() < 1e-12, "{floor:?}");
+        // Every run saw the floor; the second saw no ceiling deposit (1 3 / 100), neither an
+        // escape ((2 + 1) 3 / 100).
+        assert_eq!(floor.unseen_bound, 0.0);
+        assert!((split.deposited[1].unseen_bound - 0.03).abs() < 1e-15, "{:?}", split.deposited[1]);
+        assert!((split.escaped.unseen_bound - 0.09).abs() < 1e-15, "{:?}", split.escaped);
         let three = [bin(1e-6, 2.0), bin(2e-6, 1.0), bin(3e-6, 1.0)];
         let middle = fates(100, [20, 0, 0], 80, 0, 1e-4);
         let inner = integrate(&three, &[runs[0], middle, runs[1]], &[0.0, 1.0, 0.0]).deposited[0];
