@@ -216,7 +216,7 @@ fn fit_recovers_a_preset_from_its_curve() {
 #[test]
 fn fit_names_bad_rows_and_warns_on_extrapolation() {
     let bad = write_csv("bad.csv", "vn,e\n0.1,0.3\n0.2,abc\n");
-    user_error(&["fit", bad.to_str().unwrap()], "bad.csv:3: e 'abc' is not a finite number");
+    user_error(&["fit", bad.to_str().unwrap()], "bad.csv line 3: `e` 'abc' is not a finite number");
     let no_column = write_csv("cols.csv", "speed,e\n0.1,0.3\n");
     user_error(&["fit", no_column.to_str().unwrap()], "must name the columns vn and e");
     user_error(&["fit", "/nonexistent/data.csv"], "/nonexistent/data.csv");
@@ -248,9 +248,9 @@ fn failed_and_degenerate_fits_are_errors_with_their_reason() {
     let same = write_csv("same.csv", &format!("vn,e\n{}", "0.5,0.7\n".repeat(5)));
     user_error(&["fit", same.to_str().unwrap(), "--q", "0.5"], "the fit failed");
     let high = write_csv("high.csv", "vn,e\n0.1,0.3\n0.2,1.5\n");
-    user_error(&["fit", high.to_str().unwrap()], "high.csv:3: e = 1.5 is outside [0, 1]");
+    user_error(&["fit", high.to_str().unwrap()], "high.csv line 3: e = 1.5 is outside [0, 1]");
     let low = write_csv("low.csv", "vn,e\n0.1,-0.2\n");
-    user_error(&["fit", low.to_str().unwrap()], "low.csv:2: e = -0.2 is outside [0, 1]");
+    user_error(&["fit", low.to_str().unwrap()], "low.csv line 2: e = -0.2 is outside [0, 1]");
     user_error(&["fit", example, "--q", "0"], "--q 0: the exponent must be finite and positive");
     user_error(&["fit", example, "--q=-1"], "--q -1");
     user_error(&["fit", example, "--p", "nan"], "--p NaN");
