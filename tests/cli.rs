@@ -870,6 +870,12 @@ fn size_distribution_errors_name_the_file_line_and_key() {
         "[particles]\nsize_bins = \"uneven.csv\"\n",
         "uneven.csv line 4: `diameter_um` must be evenly spaced in ln d (ratio 4 here, 2 at first)",
     );
+    std::fs::write(dir.join("empty.csv"), "lower,upper,mass\n1e-6,2e-6,0\n").unwrap();
+    check(
+        "empty.toml",
+        "[particles]\nsize_bins = \"empty.csv\"\n",
+        "empty.csv: the size classes must have some particles",
+    );
     std::fs::write(dir.join("header.csv"), "size,mass\n1e-6,1e-9\n").unwrap();
     check("header.toml", "[particles]\nsize_bins = \"header.csv\"\n", "line 2: `particles.size_bins`");
 }
@@ -907,7 +913,7 @@ fn a_distribution_too_coarse_for_the_room_names_its_modes() {
         "[room]\nsize = [1.0, 1.0, 1.0]\n[[particles.modes]]\nmass_median = 0.1\ngeometric_sd = 2.0\n",
     )
     .unwrap();
-    user_error(&["room", scene.to_str().unwrap(), "--no-plot"], "`particles.modes` = ");
+    user_error(&["room", scene.to_str().unwrap(), "--no-plot"], "`particles.modes (a bin's diameter, m)` = ");
 }
 
 /// Shares are of the distribution's whole mass, in the bins and beyond them: a mode of MMD

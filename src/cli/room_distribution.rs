@@ -89,7 +89,7 @@ pub enum MassUnit {
 
 /// How PM2.5 and PM10 are cut, for the outputs.
 pub const PM_DEFINITION: &str = "PM2.5 and PM10: mass of particles of aerodynamic diameter (unit density, with slip \
-correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341, ISO 7708)";
+correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341:2014, ISO 7708)";
 
 impl DistributionReport {
     /// The report of `balance` in a room of `volume` (m^3).

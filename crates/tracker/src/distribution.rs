@@ -40,16 +40,17 @@
 //! ## PM2.5 and PM10
 //! PM2.5 and PM10 are the mass of particles of aerodynamic diameter below 2.5 um and 10 um.
 //! The standards define them by size-selective inlets of 50 % efficiency at those aerodynamic
-//! diameters (EU Directive 2008/50/EC, Art. 2, with the reference samplers of EN 12341 and
-//! EN 14907; the conventions of ISO 7708:1995); depo takes the idealised sharp cut at the 50 %
-//! point: all particles below, none above. A particle's aerodynamic diameter (Hinds 1999,
-//! Eq. 3.26, a sphere) is the diameter of the unit-density sphere (1000 kg/m^3) that settles
+//! diameters (EU Directive 2008/50/EC, Art. 2, with the reference method of EN 12341:2014,
+//! which replaced EN 12341:1998 for PM10 and EN 14907:2005 for PM2.5; the conventions of ISO
+//! 7708:1995); depo takes the idealised sharp cut at the 50 % point: all particles below,
+//! none above. A particle's aerodynamic diameter (Hinds 1999, Sec. 3.6; a sphere) is the diameter of the unit-density sphere (1000 kg/m^3) that settles
 //! as fast, with the slip correction of each: `d_a^2 Cc(d_a) 1000 = d^2 Cc(d) rho_p`
 //! ([`aerodynamic_diameter`]). The cut falls within a bin; the bin's mass below it is
 //! integrated exactly and shares the bin's fate.
 //!
 //! References: Hinds, *Aerosol Technology* (2nd ed., 1999), Sec. 4.4-4.5 (lognormal
-//! distribution, the Hatch-Choate equations) and Sec. 3.10 (aerodynamic diameter).
+//! distribution, the Hatch-Choate equations, the diameters of average) and Sec. 3.6
+//! (aerodynamic diameter).
 
 use std::f64::consts::{PI, SQRT_2};
 
@@ -97,11 +98,20 @@ pub fn count_median(mass_median: f64, geometric_sd: f64) -> f64 {
     hatch_choate(mass_median, geometric_sd, -3.0)
 }
 
+/// The diameter of average `p`-th power of a lognormal count distribution, `(mean d^p)^(1/p)
+/// = CMD exp(p ln^2 sigma_g / 2)` (Hinds 1999, Sec. 4.5, the Hatch-Choate equation for the
+/// diameter of average property; not the `q`-th moment median of [`hatch_choate`]): `p = 2`
+/// the diameter of average surface, `p = 3` of average mass.
+#[must_use]
+pub fn average_diameter(count_median: f64, geometric_sd: f64, p: f64) -> f64 {
+    count_median * (p / 2.0 * geometric_sd.ln().powi(2)).exp()
+}
+
 /// Mean mass of a particle of a lognormal count distribution, kg: `rho pi d_m^3 / 6` with the
-/// diameter of average mass `d_m = CMD exp(1.5 ln^2 sigma_g)` (Hinds 1999, Sec. 4.5).
+/// diameter of average mass `d_m = CMD exp(1.5 ln^2 sigma_g)` ([`average_diameter`], `p = 3`).
 #[must_use]
 pub fn mean_particle_mass(count_median: f64, geometric_sd: f64, density: f64) -> f64 {
-    density * PI / 6.0 * hatch_choate(count_median, geometric_sd, 1.5).powi(3)
+    density * PI / 6.0 * average_diameter(count_median, geometric_sd, 3.0).powi(3)
 }
 
 /// Share of a lognormal distribution of median `median` and geometric standard deviation
@@ -139,7 +149,7 @@ fn equal_settling(diameter: f64, from: f64, to: f64, air: &Air) -> f64 {
 }
 
 /// Aerodynamic diameter of a sphere of `diameter` (m) and `density` (kg/m^3) in `air` (Hinds
-/// 1999, Eq. 3.26): `d_a` with `d_a^2 Cc(d_a) 1000 kg/m^3 = d^2 Cc(d) rho_p`.
+/// 1999, Sec. 3.6): `d_a` with `d_a^2 Cc(d_a) 1000 kg/m^3 = d^2 Cc(d) rho_p`.
 #[must_use]
 pub fn aerodynamic_diameter(diameter: f64, density: f64, air: &Air) -> f64 {
     equal_settling(diameter, density, UNIT_DENSITY, air)
@@ -798,11 +808,12 @@ impl DistributionStudy {
             };
             let done = points.len();
             points.extend(study.run(|k| progress(done + k)).map_err(|mut e| {
-                // The sizes are the distribution's, not a list of diameters.
+                // The sizes are the distribution's, not a list of diameters: the value is a
+                // bin's diameter.
                 if e.field == "particles.diameters" {
                     e.field = match self.distribution {
-                        Distribution::Modes { .. } => "particles.modes",
-                        Distribution::Classes(_) => "particles.size_bins",
+                        Distribution::Modes { .. } => "particles.modes (a bin's diameter, m)",
+                        Distribution::Classes(_) => "particles.size_bins (a bin's diameter, m)",
                     }
                     .into();
                 }
@@ -841,6 +852,9 @@ mod tests {
         assert!((count_median(4.226436e-6, s) / 1e-6 - 1.0).abs() < 1e-6);
         // Surface median, q = 2: exp(0.960906) = 2.614063 um.
         assert!((hatch_choate(cmd, s, 2.0) / 2.614063e-6 - 1.0).abs() < 1e-6);
+        // Diameters of average surface and mass: exp(0.480453) = 1.616807 um, 2.055830 um.
+        assert!((average_diameter(cmd, s, 2.0) / 1.616807e-6 - 1.0).abs() < 1e-6);
+        assert!((average_diameter(cmd, s, 3.0) / 2.055830e-6 - 1.0).abs() < 1e-6);
         // Mean particle mass at 1000 kg/m^3: pi / 6 (2.055830e-6)^3 1000 = 4.549462e-15 kg.
         let m = mean_particle_mass(cmd, s, 1000.0);
         assert!((m / 4.549462e-15 - 1.0).abs() < 1e-5, "{m}");
