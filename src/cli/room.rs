@@ -651,8 +651,7 @@ pub fn log_grid(from: f64, to: f64, n: usize) -> Vec<f64> {
 }
 
 /// The room's figures and deposition maps into `dir`.
-fn plot_room(dir: &std::path::Path, study: &RoomStudy, all_rows: &[Row]) -> Result<(), Error> {
-    let rows = all_rows;
+fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(), Error> {
     // Lai & Nazaroff on 100 sizes across the study's, from the same model and inputs the
     // study compares with (its air, gravity and friction velocity).
     let u_star = study.scene.flow.friction_velocity().unwrap_or(0.0);
@@ -663,10 +662,10 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, all_rows: &[Row]) -> Resu
     let mut deposition_series = Vec::new();
     let mut beta_series = Vec::new();
     for (k, rho) in first_seen(rows.iter().map(|r| r.density)).into_iter().enumerate() {
-        let rows: Vec<&Row> = rows.iter().filter(|r| r.density == rho).collect();
-        let of = density_label(all_rows, rho, ", ", " kg/m^3");
+        let own: Vec<&Row> = rows.iter().filter(|r| r.density == rho).collect();
+        let of = density_label(rows, rho, ", ", " kg/m^3");
         let (lo, hi) =
-            rows.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(r.diameter_um), b.max(r.diameter_um)));
+            own.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(r.diameter_um), b.max(r.diameter_um)));
         let model: Vec<(f64, LaiNazaroff)> = log_grid(lo * 1e-6, hi * 1e-6, 100)
             .into_iter()
             .map(|d| (d * 1e6, LaiNazaroff::new(d, rho, &study.scene.air, g, u_star)))
@@ -684,9 +683,9 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, all_rows: &[Row]) -> Resu
         // depo's values with their standard errors, and where a surface had no deposit its 95 %
         // upper bound.
         let measured = |name: &str, pick: &dyn Fn(&Row) -> &Measured, color: usize| {
-            let hit: Vec<&&Row> = rows.iter().filter(|r| pick(r).upper_bound.is_none()).collect();
+            let hit: Vec<&&Row> = own.iter().filter(|r| pick(r).upper_bound.is_none()).collect();
             let bounds: Vec<(f64, f64)> =
-                rows.iter().filter_map(|r| pick(r).upper_bound.map(|b| (r.diameter_um, b))).collect();
+                own.iter().filter_map(|r| pick(r).upper_bound.map(|b| (r.diameter_um, b))).collect();
             let mut series = vec![Series::markers(
                 format!("{name}{of} (depo, +- 1 s.e.)"),
                 hit.iter().map(|r| (r.diameter_um, pick(r).value)).collect(),
