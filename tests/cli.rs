@@ -216,7 +216,7 @@ fn fit_recovers_a_preset_from_its_curve() {
 #[test]
 fn fit_names_bad_rows_and_warns_on_extrapolation() {
     let bad = write_csv("bad.csv", "vn,e\n0.1,0.3\n0.2,abc\n");
-    user_error(&["fit", bad.to_str().unwrap()], "bad.csv:3: e 'abc' is not a finite number");
+    user_error(&["fit", bad.to_str().unwrap()], "bad.csv line 3: `e` 'abc' is not a finite number");
     let no_column = write_csv("cols.csv", "speed,e\n0.1,0.3\n");
     user_error(&["fit", no_column.to_str().unwrap()], "must name the columns vn and e");
     user_error(&["fit", "/nonexistent/data.csv"], "/nonexistent/data.csv");
@@ -248,9 +248,9 @@ fn failed_and_degenerate_fits_are_errors_with_their_reason() {
     let same = write_csv("same.csv", &format!("vn,e\n{}", "0.5,0.7\n".repeat(5)));
     user_error(&["fit", same.to_str().unwrap(), "--q", "0.5"], "the fit failed");
     let high = write_csv("high.csv", "vn,e\n0.1,0.3\n0.2,1.5\n");
-    user_error(&["fit", high.to_str().unwrap()], "high.csv:3: e = 1.5 is outside [0, 1]");
+    user_error(&["fit", high.to_str().unwrap()], "high.csv line 3: e = 1.5 is outside [0, 1]");
     let low = write_csv("low.csv", "vn,e\n0.1,-0.2\n");
-    user_error(&["fit", low.to_str().unwrap()], "low.csv:2: e = -0.2 is outside [0, 1]");
+    user_error(&["fit", low.to_str().unwrap()], "low.csv line 2: e = -0.2 is outside [0, 1]");
     user_error(&["fit", example, "--q", "0"], "--q 0: the exponent must be finite and positive");
     user_error(&["fit", example, "--q=-1"], "--q -1");
     user_error(&["fit", example, "--p", "nan"], "--p NaN");
@@ -774,19 +774,43 @@ fn room_reports_a_size_distribution_mass_balance() {
     }
     assert!(d["pm2_5"]["injected"].as_f64() < d["pm10"]["injected"].as_f64());
     assert!(d["all"]["exhausted"]["value"].as_f64().unwrap() > 0.0);
+    // Nothing escapes a room: every bin's 60 particles bound it by the rule of three, 3 / 60.
+    let escaped = &d["all"]["escaped"];
+    assert_eq!(escaped["value"], 0.0);
+    assert!((escaped["unseen_bound"].as_f64().unwrap() / injected - 0.05).abs() < 1e-12, "{escaped}");
     let figure = std::fs::read_to_string(plots.join("room-distribution.svg")).unwrap();
     assert!(legend_y(&figure, "injected (1500 kg/m^3)") > 500.0);
+    // Each run says its density; the figures draw Lai & Nazaroff for each density and label
+    // depo's points and decay curves with it; the deposition maps' names carry it.
+    let sizes = report["sizes"].as_array().unwrap();
+    assert_eq!((sizes[0]["density"].as_f64(), sizes[4]["density"].as_f64()), (Some(1500.0), Some(2500.0)));
+    let deposition = std::fs::read_to_string(plots.join("room-deposition.svg")).unwrap();
+    for rho in [1500, 2500] {
+        assert!(deposition.contains(&format!("floor (Lai &amp; Nazaroff, {rho} kg/m^3")), "{rho}");
+        assert!(deposition.contains(&format!("floor, {rho} kg/m^3 (depo, +- 1 s.e.)")), "{rho}");
+    }
+    let beta = std::fs::read_to_string(plots.join("room-beta.svg")).unwrap();
+    assert!(beta.contains("Lai &amp; Nazaroff (2000), 2500 kg/m^3"));
+    let decay = std::fs::read_to_string(plots.join("room-decay.svg")).unwrap();
+    let first = (sizes[0]["diameter_um"].as_f64().unwrap() * 1e4).round() / 1e4;
+    assert!(decay.contains(&format!("{first} um, 1500 kg/m^3 (depo")), "{first}");
+    assert!(plots.join(format!("room-map-floor-{first}um-1500kgm3.csv")).exists(), "{first}");
+    let maps = std::fs::read_dir(&plots)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().starts_with("room-map-"));
+    assert_eq!(maps.count(), 8 * 6, "a map per bin and wall");
     // The CSV: one row per class, the same numbers.
     let csv =
         String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]).stdout).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 4, "{csv}");
-    assert!(lines[0].starts_with("class,injected,floor,floor_error,floor_quadrature,"), "{csv}");
+    assert!(lines[0].starts_with("class,injected,floor,floor_error,floor_quadrature,floor_unseen_bound,"), "{csv}");
     let floor: f64 = lines[1].split(',').nth(2).unwrap().parse().unwrap();
     assert_eq!(floor, d["all"]["floor"]["value"].as_f64().unwrap());
     assert!(lines[3].starts_with("PM2.5,"));
     let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
     assert!(table.contains("Size distribution: 8 bins (density 1500, 2500 kg/m^3)"), "{table}");
+    assert_eq!(table.matches("particle density 2500 kg/m^3:").count(), 2, "in both per-size tables: {table}");
 }
 
 /// Measured size classes from a CSV file beside the scene: by edges, or by midpoints with
@@ -844,7 +868,7 @@ fn size_distribution_errors_name_the_file_line_and_key() {
     check(
         "narrow.toml",
         &format!("{mode}[[particles.modes]]\ncount_median = 1e-6\ngeometric_sd = 0.5\n"),
-        "narrow.toml line 4: `particles.modes[1].geometric_sd` = 0.5 must be finite and >= 1",
+        "narrow.toml line 4: `particles.modes[1].geometric_sd` = 0.5 must be from 1 to 5",
     );
     check(
         "medians.toml",
@@ -869,6 +893,19 @@ fn size_distribution_errors_name_the_file_line_and_key() {
         "[particles]\nsize_bins = \"bad.csv\"\n",
         "bad.csv line 3: upper = 0.000002 must be finite and above the lower edge",
     );
+    // Midpoints 1, 2, 8 um would give the middle class edges 1.41 and 4 um, run at 2.38 um.
+    std::fs::write(dir.join("uneven.csv"), "diameter_um,mass\n1,1e-9\n2,1e-9\n8,1e-9\n").unwrap();
+    check(
+        "uneven.toml",
+        "[particles]\nsize_bins = \"uneven.csv\"\n",
+        "uneven.csv line 4: `diameter_um` must be evenly spaced in ln d (ratio 4 here, 2 at first)",
+    );
+    std::fs::write(dir.join("empty.csv"), "lower,upper,mass\n1e-6,2e-6,0\n").unwrap();
+    check(
+        "empty.toml",
+        "[particles]\nsize_bins = \"empty.csv\"\n",
+        "empty.csv: the size classes must have some particles",
+    );
     std::fs::write(dir.join("header.csv"), "size,mass\n1e-6,1e-9\n").unwrap();
     check("header.toml", "[particles]\nsize_bins = \"header.csv\"\n", "line 2: `particles.size_bins`");
 }
@@ -883,6 +920,8 @@ fn example_size_distributions_parse() {
     std::fs::write(&modes, text).unwrap();
     let report = ok_json(&["room", modes.to_str().unwrap(), "--format", "json", "--no-plot"]);
     assert_eq!(report["distribution"]["bins"].as_array().unwrap().len(), 20);
+    // A run of no time measures no loss rate: none, not 0 +- 0.
+    assert!(report["distribution"]["all"]["beta_per_hour"].is_null(), "{}", report["distribution"]["all"]);
     let classes = dir.join("classes.toml");
     let csv = std::fs::canonicalize("examples/size-classes.csv").unwrap();
     std::fs::write(&classes, format!("[particles]\nsize_bins = {:?}\n[run]\nduration = 0.0\n", csv.to_str().unwrap()))
@@ -904,5 +943,36 @@ fn a_distribution_too_coarse_for_the_room_names_its_modes() {
         "[room]\nsize = [1.0, 1.0, 1.0]\n[[particles.modes]]\nmass_median = 0.1\ngeometric_sd = 2.0\n",
     )
     .unwrap();
-    user_error(&["room", scene.to_str().unwrap(), "--no-plot"], "`particles.modes` = ");
+    user_error(&["room", scene.to_str().unwrap(), "--no-plot"], "`particles.modes (a bin's diameter, m)` = ");
+}
+
+/// Shares are of the distribution's whole mass, in the bins and beyond them: a mode of MMD
+/// 3 um and `sigma_g` 2 over bins from 0.75 to 12 um (two `sigma_g` either side) holds
+/// `Phi(2) - Phi(-2)` = 95.4500 % of its mass in the bins and 4.5500 % beyond them, whatever
+/// the bins hold. A range that misses the mode is an error naming `bin_range`.
+#[test]
+fn distribution_shares_are_of_the_whole_mass_and_a_missed_mode_is_an_error() {
+    let dir = scratch("distribution-shares");
+    let scene = |name: &str, range: &str| {
+        let path = dir.join(name);
+        std::fs::write(
+            &path,
+            format!(
+                "[room]\nsize = [1.0, 1.0, 1.0]\n[[particles.modes]]\nmass_median = 3e-6\ngeometric_sd = 2.0\n\
+                 [particles]\ncount = 10\ntarget_error = 0.0\nbins = 4\nbin_range = {range}\n[run]\nduration = 0.0\n"
+            ),
+        )
+        .unwrap();
+        path
+    };
+    let path = scene("partial.toml", "[0.75e-6, 12e-6]");
+    let d = ok_json(&["room", path.to_str().unwrap(), "--format", "json", "--no-plot"])["distribution"].clone();
+    assert_eq!(d["mass_unit"], "share of the distribution's mass");
+    assert!((d["outside_bins"].as_f64().unwrap() - 0.045_500).abs() < 1e-6, "{}", d["outside_bins"]);
+    assert!((d["all"]["injected"].as_f64().unwrap() - 0.954_500).abs() < 1e-6, "{}", d["all"]["injected"]);
+    let missed = scene("missed.toml", "[0.01e-6, 0.05e-6]");
+    user_error(
+        &["room", missed.to_str().unwrap(), "--no-plot"],
+        "missed.toml line 10: the bins hold 0.000 % of the modes' mass, less than the 50 % needed",
+    );
 }

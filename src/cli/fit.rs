@@ -1,12 +1,13 @@
 //! `depo fit DATA.csv`: measured restitution to the law's constants (the paper's Eq. 10 fits).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
 use depo::wall_model::fit::{fit, Exponents, FitReport, Sample};
 use depo::wall_model::WallLaw;
 use serde::Serialize;
 
+use super::csv_input::CsvInput;
 use super::plot::{self, Series};
 use super::{Error, Format};
 
@@ -54,50 +55,29 @@ struct Output {
 }
 
 /// Reads the samples; an unreadable file or a bad row is one line naming the file and line.
-fn read(path: &PathBuf) -> Result<Vec<Sample>, Error> {
-    let name = path.display();
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .from_path(path)
-        .map_err(|e| format!("{name}: {e}"))?;
-    let headers = reader.headers().map_err(|e| format!("{name}: {e}"))?.clone();
-    let column = |wanted: &str| headers.iter().position(|h| h.eq_ignore_ascii_case(wanted));
-    let (vn, e) = match (column("vn"), column("e")) {
+fn read(path: &Path) -> Result<Vec<Sample>, Error> {
+    let mut file = CsvInput::open(path)?;
+    let (vn, e) = match (file.column("vn"), file.column("e")) {
         (Some(vn), Some(e)) => (vn, e),
-        _ => {
-            return Err(format!(
-                "{name}: the header must name the columns vn and e (found: {})",
-                headers.iter().collect::<Vec<_>>().join(", ")
-            ))
-        }
+        _ => return Err(file.header_error("the header must name the columns vn and e")),
     };
-    let weight = column("weight");
+    let weight = file.column("weight");
     let mut samples = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| format!("{name}: {e}"))?;
-        let line = record.position().map_or(0, |p| p.line());
-        let number = |index: usize, what: &str| -> Result<f64, Error> {
-            let text = record.get(index).unwrap_or("");
-            text.parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| format!("{name}:{line}: {what} '{text}' is not a finite number"))
-        };
-        let speed = number(vn, "vn")?;
+    for row in file.rows()? {
+        let speed = row.number(vn, "vn")?;
         if speed == 0.0 {
-            return Err(format!("{name}:{line}: vn is zero (not an impact)"));
+            return Err(row.error("vn is zero (not an impact)"));
         }
         let w = match weight {
-            Some(index) => number(index, "weight")?,
+            Some(index) => row.number(index, "weight")?,
             None => 1.0,
         };
         if w <= 0.0 {
-            return Err(format!("{name}:{line}: weight must be positive"));
+            return Err(row.error("weight must be positive"));
         }
-        let restitution = number(e, "e")?;
+        let restitution = row.number(e, "e")?;
         if !(0.0..=1.0).contains(&restitution) {
-            return Err(format!("{name}:{line}: e = {restitution} is outside [0, 1]"));
+            return Err(row.error(&format!("e = {restitution} is outside [0, 1]")));
         }
         samples.push(Sample { speed: speed.abs(), restitution, weight: w });
     }

@@ -12,6 +12,7 @@ macro_rules! out {
 mod bench;
 mod capture;
 mod channel;
+mod csv_input;
 mod curve;
 mod figures;
 mod fit;

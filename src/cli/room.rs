@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::Args as ClapArgs;
 use depo::tracker::correlations::LaiNazaroff;
 use depo::tracker::decay::MIN_AIRBORNE;
-use depo::tracker::distribution::DistributionStudy;
+use depo::tracker::distribution::{first_seen, DistributionStudy};
 use depo::tracker::studies::MAP_BINS;
 use depo::tracker::studies::{RoomPoint, RoomStudy};
 use depo::tracker::{binomial_error, DecayCurve, Estimate, Flow, Geometry, WallTally};
@@ -128,6 +128,8 @@ impl From<WallTally> for Tally {
 #[derive(Serialize)]
 struct Row {
     diameter_um: f64,
+    /// Particle density, kg/m^3 (a size distribution's bins can have several).
+    density: f64,
     floor: Measured,
     ceiling: Measured,
     walls: Measured,
@@ -276,8 +278,8 @@ struct Report<'a> {
     distribution: Option<&'a DistributionReport>,
 }
 
-/// A size's row; `size` the room's, m.
-fn row(p: &RoomPoint, size: [f64; 3]) -> Row {
+/// A size's row; `size` the room's, m; `density` its particles', kg/m^3.
+fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
     let per_hour = |e: Estimate| Measured::from(e).scaled(3600.0);
     let (floor, ceiling, walls) = (Measured::from(p.floor), Measured::from(p.ceiling), Measured::from(p.walls));
     let unresolved =
@@ -288,6 +290,7 @@ fn row(p: &RoomPoint, size: [f64; 3]) -> Row {
             .collect();
     Row {
         diameter_um: p.diameter * 1e6,
+        density,
         floor,
         ceiling,
         walls,
@@ -375,7 +378,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
         Flow::TurbulentRoom { friction_velocity, .. } => friction_velocity,
         _ => 0.0,
     };
-    let rows: Vec<Row> = points.iter().map(|p| row(p, size)).collect();
+    // Each run's density: the bins' with a size distribution (in the points' order).
+    let density = |i: usize| distribution.as_ref().map_or(study.density, |d| d.bins[i].density);
+    let rows: Vec<Row> = points.iter().enumerate().map(|(i, p)| row(p, size, density(i))).collect();
     let ventilated = study.scene.air_exchange > 0.0;
     let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();
     match args.format {
@@ -512,7 +517,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             let cell = |r: &Row, name: &str, m: &Measured| {
                 format!("{}{}", m.cell(), if r.unresolved.contains(&name) { "*" } else { " " })
             };
-            for r in &rows {
+            for (i, r) in rows.iter().enumerate() {
+                density_heading(&rows, i);
                 let method = match r.excursions_truncated {
                     Some(t) if t > 1e-3 => format!("excursions ({:.1} %)", 100.0 * t),
                     Some(_) => "excursions".to_string(),
@@ -566,6 +572,24 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
     Ok(())
 }
 
+/// Before the first row of each density, where the rows have several: the density.
+fn density_heading(rows: &[Row], i: usize) {
+    let several = rows.iter().any(|r| r.density != rows[0].density);
+    if several && (i == 0 || rows[i - 1].density != rows[i].density) {
+        out!("particle density {} kg/m^3:", rows[i].density);
+    }
+}
+
+/// The rows' densities after a diameter or in a file name, where they have several: `""`
+/// or `", 1500 kg/m^3"` (`sep` `", "`, `unit` `" kg/m^3"`).
+fn density_label(rows: &[Row], density: f64, sep: &str, unit: &str) -> String {
+    if rows.iter().any(|r| r.density != rows[0].density) {
+        format!("{sep}{density}{unit}")
+    } else {
+        String::new()
+    }
+}
+
 /// A rate per hour with its standard error: fixed-point from 0.1/h, else in e-notation.
 fn rate_cell(m: &Measured) -> String {
     if m.value.abs() >= 0.1 {
@@ -614,7 +638,8 @@ fn decay_table(rows: &[Row], ach: f64) {
         "airborne",
         "floor (ug/m2 per mg)"
     );
-    for r in rows {
+    for (i, r) in rows.iter().enumerate() {
+        density_heading(rows, i);
         let (fitted, z, window) = match &r.decay_fit {
             Some(f) => (
                 fitted_cell(&f.beta_per_hour),
@@ -663,59 +688,75 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
     let u_star = study.scene.flow.friction_velocity().unwrap_or(0.0);
     let g = study.scene.gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
     let size = study.scene.geometry.size();
-    let (lo, hi) = study.diameters.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &d| (a.min(d), b.max(d)));
-    let model: Vec<(f64, LaiNazaroff)> = log_grid(lo, hi, 100)
-        .into_iter()
-        .map(|d| (d * 1e6, LaiNazaroff::new(d, study.density, &study.scene.air, g, u_star)))
-        .collect();
-    let curve = |name: &str, pick: &dyn Fn(&LaiNazaroff) -> f64, color: usize| {
-        let points: Vec<(f64, f64)> = model.iter().map(|(d, m)| (*d, pick(m))).filter(|p| p.1 > MODEL_FLOOR).collect();
-        let name = if points.len() < model.len() {
-            format!("{name} (Lai & Nazaroff; below {MODEL_FLOOR:.0e} m/s not shown)")
-        } else {
-            format!("{name} (Lai & Nazaroff)")
+    // Per density (a size distribution's bins can have several): Lai & Nazaroff for it across
+    // its sizes, depo's values in their own colours.
+    let mut deposition_series = Vec::new();
+    let mut beta_series = Vec::new();
+    for (k, rho) in first_seen(rows.iter().map(|r| r.density)).into_iter().enumerate() {
+        let own: Vec<&Row> = rows.iter().filter(|r| r.density == rho).collect();
+        let of = density_label(rows, rho, ", ", " kg/m^3");
+        let (lo, hi) =
+            own.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(r.diameter_um), b.max(r.diameter_um)));
+        let model: Vec<(f64, LaiNazaroff)> = log_grid(lo * 1e-6, hi * 1e-6, 100)
+            .into_iter()
+            .map(|d| (d * 1e6, LaiNazaroff::new(d, rho, &study.scene.air, g, u_star)))
+            .collect();
+        let curve = |name: &str, pick: &dyn Fn(&LaiNazaroff) -> f64, color: usize| {
+            let points: Vec<(f64, f64)> =
+                model.iter().map(|(d, m)| (*d, pick(m))).filter(|p| p.1 > MODEL_FLOOR).collect();
+            let name = if points.len() < model.len() {
+                format!("{name} (Lai & Nazaroff{of}; below {MODEL_FLOOR:.0e} m/s not shown)")
+            } else {
+                format!("{name} (Lai & Nazaroff{of})")
+            };
+            Series::line(name, points).color(color)
         };
-        Series::line(name, points).color(color)
-    };
-    // depo's values with their standard errors, and where a surface had no deposit its 95 %
-    // upper bound.
-    let measured = |name: &str, pick: &dyn Fn(&Row) -> &Measured, color: usize| {
-        let hit: Vec<&Row> = rows.iter().filter(|r| pick(r).upper_bound.is_none()).collect();
-        let bounds: Vec<(f64, f64)> =
-            rows.iter().filter_map(|r| pick(r).upper_bound.map(|b| (r.diameter_um, b))).collect();
-        let mut series = vec![Series::markers(
-            format!("{name} (depo, +- 1 s.e.)"),
-            hit.iter().map(|r| (r.diameter_um, pick(r).value)).collect(),
-        )
-        .with_errors(hit.iter().map(|r| pick(r).error).collect())
-        .color(color)];
-        if !bounds.is_empty() {
-            series.push(Series::upper_bounds(format!("{name}: no deposit, 95 % upper bound"), bounds).color(color));
-        }
-        series
-    };
+        // depo's values with their standard errors, and where a surface had no deposit its 95 %
+        // upper bound.
+        let measured = |name: &str, pick: &dyn Fn(&Row) -> &Measured, color: usize| {
+            let hit: Vec<&&Row> = own.iter().filter(|r| pick(r).upper_bound.is_none()).collect();
+            let bounds: Vec<(f64, f64)> =
+                own.iter().filter_map(|r| pick(r).upper_bound.map(|b| (r.diameter_um, b))).collect();
+            let mut series = vec![Series::markers(
+                format!("{name}{of} (depo, +- 1 s.e.)"),
+                hit.iter().map(|r| (r.diameter_um, pick(r).value)).collect(),
+            )
+            .with_errors(hit.iter().map(|r| pick(r).error).collect())
+            .color(color)];
+            if !bounds.is_empty() {
+                series.push(
+                    Series::upper_bounds(format!("{name}{of}: no deposit, 95 % upper bound"), bounds).color(color),
+                );
+            }
+            series
+        };
+        // Each density in its own three colours.
+        let c = 3 * k;
+        deposition_series.extend(measured("floor", &|r| &r.floor, c));
+        deposition_series.extend(measured("ceiling", &|r| &r.ceiling, c + 1));
+        deposition_series.extend(measured("walls", &|r| &r.walls, c + 2));
+        deposition_series.push(curve("floor", &|m| m.floor, c));
+        deposition_series.push(curve("ceiling", &|m| m.ceiling, c + 1));
+        deposition_series.push(curve("walls", &|m| m.wall, c + 2));
+        beta_series.extend(measured("beta", &|r| &r.beta_per_hour, 2 * k));
+        beta_series.push(
+            Series::line(
+                format!("Lai & Nazaroff (2000){of}"),
+                model.iter().map(|(d, m)| (*d, m.loss_rate(size) * 3600.0)).collect(),
+            )
+            .color(2 * k + 1),
+        );
+    }
     let deposition = dir.join("room-deposition.svg");
-    let mut series = Vec::new();
-    series.extend(measured("floor", &|r| &r.floor, 0));
-    series.extend(measured("ceiling", &|r| &r.ceiling, 1));
-    series.extend(measured("walls", &|r| &r.walls, 2));
-    series.push(curve("floor", &|m| m.floor, 0));
-    series.push(curve("ceiling", &|m| m.ceiling, 1));
-    series.push(curve("walls", &|m| m.wall, 2));
     plot::log_log(
         &deposition,
         "Deposition velocity in a room",
         "particle diameter (um)",
         "deposition velocity (m/s)",
-        &series,
+        &deposition_series,
     )?;
     let beta = dir.join("room-beta.svg");
-    let mut series = measured("beta", &|r| &r.beta_per_hour, 0);
-    series.push(
-        Series::line("Lai & Nazaroff (2000)", model.iter().map(|(d, m)| (*d, m.loss_rate(size) * 3600.0)).collect())
-            .color(1),
-    );
-    plot::log_log(&beta, "Loss-rate coefficient", "particle diameter (um)", "beta (1/h)", &series)?;
+    plot::log_log(&beta, "Loss-rate coefficient", "particle diameter (um)", "beta (1/h)", &beta_series)?;
     // The decay curves: the airborne share with its standard error per size, and the fitted
     // line over its window in the same colour; the curves also as one CSV.
     let decay = dir.join("room-decay.svg");
@@ -723,7 +764,8 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
     let mut text = String::from("diameter_um,time_s,airborne,error,count\n");
     for (i, r) in rows.iter().enumerate() {
         let c = &r.decay;
-        let label = format!("{} um", (r.diameter_um * 1e4).round() / 1e4);
+        let label =
+            format!("{} um{}", (r.diameter_um * 1e4).round() / 1e4, density_label(rows, r.density, ", ", " kg/m^3"));
         let minutes: Vec<f64> = c.times_s.iter().map(|t| t / 60.0).collect();
         series.push(
             Series::markers(
@@ -779,12 +821,13 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
             };
             let cell = [size[a] / MAP_BINS[0] as f64, size[b] / MAP_BINS[1] as f64];
             let mut text = format!(
-                "# depo room deposition map: wall {name} ({} = {} m), particle diameter {label} um; \
+                "# depo room deposition map: wall {name} ({} = {} m), particle diameter {label} um, density {} kg/m^3; \
                  deposits of the tracked particles over the whole run, per cell\n\
                  # rows: {} from 0 to {} m in {} cells; columns: {} from 0 to {} m in {} cells\n\
                  # cell size {} m ({}) x {} m ({})\n",
                 axis[wall.axis],
                 wall.position,
+                r.density,
                 axis[a],
                 size[a],
                 MAP_BINS[0],
@@ -801,19 +844,22 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
                 text.push_str(&cells.join(","));
                 text.push('\n');
             }
-            let path = dir.join(format!("room-map-{name}-{label}um.csv"));
+            // Bins of two densities can share a diameter: the density tells their files apart.
+            let path =
+                dir.join(format!("room-map-{name}-{label}um{}.csv", density_label(rows, r.density, "-", "kgm3")));
             std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         }
     }
     eprintln!(
-        "figures: {}, {} and {}; decay curves: {}; deposition maps ({}x{} cells per wall): {}/room-map-WALL-SIZEum.csv",
+        "figures: {}, {} and {}; decay curves: {}; deposition maps ({}x{} cells per wall): {}/room-map-WALL-SIZEum{}.csv",
         deposition.display(),
         beta.display(),
         decay.display(),
         curves.display(),
         MAP_BINS[0],
         MAP_BINS[1],
-        dir.display()
+        dir.display(),
+        if first_seen(rows.iter().map(|r| r.density)).len() > 1 { "-DENSITYkgm3" } else { "" }
     );
     Ok(())
 }

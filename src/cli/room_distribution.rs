@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use depo::tracker::distribution::{MassBalance, MassSplit, Portion};
+use depo::tracker::distribution::{first_seen, MassBalance, MassSplit, Portion};
 use serde::Serialize;
 
 use super::plot::{self, Series};
@@ -17,6 +17,9 @@ pub struct Part {
     pub value: f64,
     pub error: f64,
     pub quadrature: Option<f64>,
+    /// What the bins whose run saw no particle in this fate (counted 0) may hold: the rule of
+    /// three's 95 % bound, summed (0 when every run saw it).
+    pub unseen_bound: f64,
 }
 
 /// Where one class of the mass went, in [`DistributionReport::mass_unit`].
@@ -29,8 +32,10 @@ pub struct Split {
     pub airborne: Part,
     pub exhausted: Part,
     pub escaped: Part,
-    /// The loss rate of the mass while its size distribution is the injected one...
-    pub beta_per_hour: Measured,
+    /// The deposition loss rate of the mass while its size distribution is the injected
+    /// one, at least (the bins without a beta are the fastest-settling ones)... (`null` when
+    /// no bin's run measured one)
+    pub beta_per_hour: Option<Measured>,
     /// ... over this share of the mass (the bins whose runs measured a beta).
     pub beta_mass_share: f64,
 }
@@ -58,9 +63,10 @@ pub struct BinRow {
 /// The distribution's answers.
 #[derive(Serialize)]
 pub struct DistributionReport {
-    /// "kg" (in the room: concentrations times its volume) or "share of the injected mass".
-    pub mass_unit: &'static str,
-    /// Mass of the modes outside the bins, left out of the splits.
+    /// "kg" (in the room: concentrations times its volume) or "share of the distribution's
+    /// mass" (of the modes' whole mass, in the bins and outside them).
+    pub mass_unit: MassUnit,
+    /// Mass of the modes beyond the bins' range, left out of the splits.
     pub outside_bins: f64,
     pub all: Split,
     pub pm10: Split,
@@ -70,19 +76,34 @@ pub struct DistributionReport {
     pub pm_definition: &'static str,
 }
 
+/// What the masses are in.
+#[derive(Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum MassUnit {
+    /// kg in the room: the modes' concentrations times its volume.
+    #[serde(rename = "kg")]
+    Kg,
+    /// Shares of the distribution's whole mass (in the bins and beyond them).
+    #[serde(rename = "share of the distribution's mass")]
+    Share,
+}
+
 /// How PM2.5 and PM10 are cut, for the outputs.
 pub const PM_DEFINITION: &str = "PM2.5 and PM10: mass of particles of aerodynamic diameter (unit density, with slip \
-correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341, ISO 7708)";
+correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341:2014, ISO 7708)";
 
 impl DistributionReport {
     /// The report of `balance` in a room of `volume` (m^3).
     pub fn new(balance: &MassBalance, volume: f64) -> Self {
-        // Masses in kg in the room, or as shares of the injected mass in the bins.
-        let scale = if balance.absolute { volume } else { 1.0 / balance.all.injected.max(f64::MIN_POSITIVE) };
+        // Masses in kg in the room, or as shares of the distribution's mass: in the bins and
+        // beyond them (shares of the bins' mass alone would make the mass beyond them any
+        // multiple of it).
+        let total = balance.all.injected + balance.outside;
+        let scale = if balance.absolute { volume } else { 1.0 / total.max(f64::MIN_POSITIVE) };
         let part = |p: Portion| Part {
             value: p.value * scale,
             error: p.error * scale,
             quadrature: p.quadrature.is_finite().then_some(p.quadrature * scale),
+            unseen_bound: p.unseen_bound * scale,
         };
         let split = |s: &MassSplit| Split {
             injected: s.injected * scale,
@@ -92,7 +113,7 @@ impl DistributionReport {
             airborne: part(s.airborne),
             exhausted: part(s.exhausted),
             escaped: part(s.escaped),
-            beta_per_hour: Measured::from(s.beta).scaled(3600.0),
+            beta_per_hour: s.beta.map(|b| Measured::from(b).scaled(3600.0)),
             beta_mass_share: s.beta_share,
         };
         // Numbers per room, or as shares of the number in the bins.
@@ -122,7 +143,7 @@ impl DistributionReport {
             })
             .collect();
         Self {
-            mass_unit: if balance.absolute { "kg" } else { "share of the injected mass" },
+            mass_unit: if balance.absolute { MassUnit::Kg } else { MassUnit::Share },
             outside_bins: balance.outside * scale,
             all: split(&balance.all),
             pm10: split(&balance.pm[1]),
@@ -138,19 +159,12 @@ impl DistributionReport {
 
     /// The table under the per-size one.
     pub fn table(&self) {
-        let absolute = self.mass_unit == "kg";
+        let absolute = self.mass_unit == MassUnit::Kg;
         // Micrograms read better than kilograms.
         let k = if absolute { 1e9 } else { 1.0 };
-        let unit = if absolute { "ug in the room" } else { "share of the injected mass" };
-        let densities: Vec<String> = {
-            let mut d: Vec<f64> = Vec::new();
-            self.bins.iter().for_each(|b| {
-                if !d.contains(&b.density) {
-                    d.push(b.density)
-                }
-            });
-            d.iter().map(|d| format!("{d}")).collect()
-        };
+        let unit = if absolute { "ug in the room" } else { "share of the distribution's mass" };
+        let densities: Vec<String> =
+            first_seen(self.bins.iter().map(|b| b.density)).iter().map(f64::to_string).collect();
         out!(
             "Size distribution: {} bins (density {} kg/m^3), each run at its geometric midpoint; mass ({unit}):",
             self.bins.len(),
@@ -180,7 +194,7 @@ impl DistributionReport {
                 cell(&s.walls),
                 cell(&s.airborne),
                 cell(&s.exhausted),
-                format!("{:.3} +- {:.3}", s.beta_per_hour.value, s.beta_per_hour.error)
+                s.beta_per_hour.as_ref().map_or("none measured".to_string(), beta_cell)
             );
         }
         let partial: Vec<String> = self
@@ -195,10 +209,28 @@ impl DistributionReport {
                 partial.join(", ")
             );
         }
+        let unseen: Vec<String> = [
+            ("floor", &self.all.floor),
+            ("ceiling", &self.all.ceiling),
+            ("walls", &self.all.walls),
+            ("airborne", &self.all.airborne),
+            ("exhausted", &self.all.exhausted),
+        ]
+        .into_iter()
+        .filter(|(_, p)| p.unseen_bound > 0.0)
+        .map(|(name, p)| format!("{name} < {:.1e}", p.unseen_bound * k))
+        .collect();
+        if !unseen.is_empty() {
+            out!(
+                "Bins whose run had no particle in a fate count 0 there; by the rule of three (95 %) they hold at most: {}.",
+                unseen.join(", ")
+            );
+        }
         out!(
             "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
-             one run at its midpoint (?: a bin without neighbours). Mass outside the bins, left out: {:.3e}. {PM_DEFINITION}. \
-             beta of mass: the loss rate of the airborne mass while its size distribution is the injected one.",
+             one run at its midpoint, where each share is monotonic in d (?: a bin without neighbours). Mass of the modes beyond the bins' range, left out: {:.3e}. {PM_DEFINITION}. \
+             beta of mass: the loss rate of the airborne mass by deposition (not ventilation) while its size \
+             distribution is the injected one; over part of the mass, a lower bound on the whole's.",
             self.outside_bins * k
         );
     }
@@ -208,7 +240,12 @@ impl DistributionReport {
         let parts = ["floor", "ceiling", "walls", "airborne", "exhausted"];
         let mut header = vec!["class".to_string(), "injected".to_string()];
         for p in parts {
-            header.extend([p.to_string(), format!("{p}_error"), format!("{p}_quadrature")]);
+            header.extend([
+                p.to_string(),
+                format!("{p}_error"),
+                format!("{p}_quadrature"),
+                format!("{p}_unseen_bound"),
+            ]);
         }
         header.extend(["beta_per_hour".to_string(), "beta_error".to_string(), "beta_mass_share".to_string()]);
         let header: Vec<&str> = header.iter().map(String::as_str).collect();
@@ -221,13 +258,15 @@ impl DistributionReport {
                         p.value.to_string(),
                         p.error.to_string(),
                         p.quadrature.map_or(String::new(), |q| q.to_string()),
+                        p.unseen_bound.to_string(),
                     ]);
                 }
-                row.extend([
-                    s.beta_per_hour.value.to_string(),
-                    s.beta_per_hour.error.to_string(),
-                    s.beta_mass_share.to_string(),
-                ]);
+                let beta = s
+                    .beta_per_hour
+                    .as_ref()
+                    .map_or([String::new(), String::new()], |b| [b.value.to_string(), b.error.to_string()]);
+                row.extend(beta);
+                row.push(s.beta_mass_share.to_string());
                 row
             }),
         )
@@ -237,12 +276,7 @@ impl DistributionReport {
     /// bin's diameter; one set of curves per density (the first solid, the others dashed).
     pub fn plot(&self, path: &Path) -> Result<(), Error> {
         let mut series = Vec::new();
-        let mut densities: Vec<f64> = Vec::new();
-        self.bins.iter().for_each(|b| {
-            if !densities.contains(&b.density) {
-                densities.push(b.density);
-            }
-        });
+        let densities = first_seen(self.bins.iter().map(|b| b.density));
         for &rho in &densities {
             let bins: Vec<&BinRow> = self.bins.iter().filter(|b| b.density == rho).collect();
             let label = |what: &str| {
@@ -273,8 +307,21 @@ impl DistributionReport {
                 series.push(curve("exhausted", per_ln_d(&|b| b.exhausted), 3));
             }
         }
-        let y =
-            if self.mass_unit == "kg" { "mass per unit ln d in the room (kg)" } else { "share of mass per unit ln d" };
+        let y = if self.mass_unit == MassUnit::Kg {
+            "mass per unit ln d in the room (kg)"
+        } else {
+            "share of mass per unit ln d"
+        };
         plot::log_log(path, "Where a size distribution's mass goes", "particle diameter (um)", y, &series)
+    }
+}
+
+/// A rate per hour: with deposit events `value +- error` (fixed-point from 0.1/h), without
+/// its 95 % upper bound.
+fn beta_cell(m: &Measured) -> String {
+    match m.upper_bound {
+        Some(bound) => format!("< {bound:.2e} [0]"),
+        None if m.value.abs() >= 0.1 => format!("{:.3} +- {:.3}", m.value, m.error),
+        None => format!("{:.2e} +- {:.1e}", m.value, m.error),
     }
 }

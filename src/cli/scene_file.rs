@@ -12,6 +12,7 @@ use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
 use toml::Spanned;
 
+use super::csv_input::{at_line, CsvInput};
 use super::{check_memory, Error};
 
 #[derive(Deserialize, Default)]
@@ -470,6 +471,13 @@ fn check_transient(path: &Path, transient: f64) -> Result<(), Error> {
     }
 }
 
+/// Bins holding less of the modes' mass than this are an error: the answers would be of a
+/// sliver of the distribution.
+const MIN_BINNED_SHARE: f64 = 0.5;
+
+/// Bins holding less of the modes' mass than this are warned of.
+const WARN_BINNED_SHARE: f64 = 0.99;
+
 /// The size distribution of a room scene's `[particles]`: its `modes` or its `size_bins`
 /// file, or none. A mode's density defaults to `particles.density`, and its amount to a share
 /// of 1 (of number for a count median, of mass for a mass median). Errors name the file, the
@@ -578,73 +586,82 @@ fn distribution(
             size_classes(&file, density).map_err(|e| at(name.span().start, format!("`particles.size_bins`: {e}")))?,
         )
     };
-    distribution
+    let (bins, outside) = distribution
         .bins(air)
         .map_err(|e| at(offset, format!("`particles.{}` = {} {}", e.field, e.value, e.requirement)))?;
+    // Modes the bins miss: their mass is left out of every answer.
+    let inside: f64 = bins.iter().map(|b| b.mass).sum();
+    let binned = inside / (inside + outside);
+    let range = particles.bin_range.as_ref().map_or(offset, |r| r.span().start);
+    if binned < MIN_BINNED_SHARE {
+        return Err(at(
+            range,
+            format!(
+                "the bins hold {:.3} % of the modes' mass, less than the {} % needed: widen `particles.bin_range`",
+                100.0 * binned,
+                100.0 * MIN_BINNED_SHARE
+            ),
+        ));
+    }
+    if binned < WARN_BINNED_SHARE {
+        eprintln!(
+            "depo: warning: {}: the bins hold {:.1} % of the modes' mass; the rest is left out of the mass balance",
+            path.display(),
+            100.0 * binned
+        );
+    }
     Ok(Some(distribution))
 }
 
+/// How far (relative to the first step) the steps in `ln d` between a CSV's midpoints may
+/// differ: instruments' midpoints are rounded to a few digits.
+const MIDPOINT_SPACING: f64 = 0.02;
+
 /// The size classes of a CSV file: a header naming the edges (`lower` and `upper`, m, or
 /// `lower_um` and `upper_um`) or the midpoints (`diameter` or `diameter_um`, at least two, in
-/// increasing order: edges at the geometric means between them), and `number` (1/m^3) or
+/// increasing order and evenly spaced in `ln d`: edges at the geometric means between them), and `number` (1/m^3) or
 /// `mass` (kg/m^3) per class; a `density` column (kg/m^3) is optional, `density` standing in.
 /// `#` starts a comment.
 fn size_classes(path: &Path, density: f64) -> Result<Vec<SizeClass>, Error> {
-    let name = path.display();
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .from_path(path)
-        .map_err(|e| format!("{name}: {e}"))?;
-    let headers = reader.headers().map_err(|e| format!("{name}: {e}"))?.clone();
-    let column = |wanted: &str| headers.iter().position(|h| h.eq_ignore_ascii_case(wanted));
+    let mut file = CsvInput::open(path)?;
+    let name = file.name().to_string();
     // A column in m or in um.
     let sized = |key: &str| {
-        column(key)
+        file.column(key)
             .map(|c| (c, 1.0, key.to_string()))
-            .or_else(|| column(&format!("{key}_um")).map(|c| (c, 1e-6, format!("{key}_um"))))
+            .or_else(|| file.column(&format!("{key}_um")).map(|c| (c, 1e-6, format!("{key}_um"))))
     };
-    let found = || headers.iter().collect::<Vec<_>>().join(", ");
     let edges = match (sized("lower"), sized("upper"), sized("diameter")) {
         (Some(lo), Some(hi), None) => Ok((lo, hi)),
         (None, None, Some(mid)) => Err(mid),
         _ => {
-            return Err(format!(
-                "{name}: the header must name `lower` and `upper` or `diameter` (in m, or with `_um`) (found: {})",
-                found()
-            ))
+            return Err(
+                file.header_error("the header must name `lower` and `upper` or `diameter` (in m, or with `_um`)")
+            )
         }
     };
-    let (amount, quantity) = match (column("number"), column("mass")) {
+    let (amount, quantity) = match (file.column("number"), file.column("mass")) {
         (Some(c), None) => (c, Quantity::Number),
         (None, Some(c)) => (c, Quantity::Mass),
-        _ => return Err(format!("{name}: the header must name `number` or `mass`, one of them (found: {})", found())),
+        _ => return Err(file.header_error("the header must name `number` or `mass`, one of them")),
     };
-    let density_column = column("density");
+    let density_column = file.column("density");
     let mut rows = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| format!("{name}: {e}"))?;
-        let line = record.position().map_or(0, |p| p.line());
-        let number = |index: usize, what: &str| -> Result<f64, Error> {
-            let text = record.get(index).unwrap_or("");
-            text.parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| format!("{name} line {line}: `{what}` '{text}' is not a finite number"))
-        };
+    for row in file.rows()? {
         let (a, b) = match &edges {
-            Ok(((lo, kl, nl), (hi, kh, nh))) => (number(*lo, nl)? * kl, number(*hi, nh)? * kh),
+            Ok(((lo, kl, nl), (hi, kh, nh))) => (row.number(*lo, nl)? * kl, row.number(*hi, nh)? * kh),
             Err((mid, k, n)) => {
-                let d = number(*mid, n)? * k;
+                let d = row.number(*mid, n)? * k;
                 (d, d)
             }
         };
         let rho = match density_column {
-            Some(c) => number(c, "density")?,
+            Some(c) => row.number(c, "density")?,
             None => density,
         };
         let what = if quantity == Quantity::Number { "number" } else { "mass" };
-        rows.push((line, SizeClass { lower: a, upper: b, amount: number(amount, what)?, quantity, density: rho }));
+        let class = SizeClass { lower: a, upper: b, amount: row.number(amount, what)?, quantity, density: rho };
+        rows.push((row.line, class));
     }
     if let Err((_, _, key)) = &edges {
         // Midpoints: edges halfway in ln d, the outer ones as far out as the inner ones.
@@ -653,10 +670,27 @@ fn size_classes(path: &Path, density: f64) -> Result<Vec<SizeClass>, Error> {
         }
         for w in rows.windows(2) {
             if w[1].1.lower <= w[0].1.lower {
-                return Err(format!("{name} line {}: `{key}` must increase from row to row", w[1].0));
+                return Err(at_line(&name, w[1].0, &format!("`{key}` must increase from row to row")));
             }
         }
         let mids: Vec<f64> = rows.iter().map(|r| r.1.lower).collect();
+        // Each class runs at the geometric mean of its edges: that is its given midpoint only
+        // where the midpoints are evenly spaced in ln d (to rounding).
+        let step = (mids[1] / mids[0]).ln();
+        for (i, w) in mids.windows(2).enumerate().skip(1) {
+            if ((w[1] / w[0]).ln() / step - 1.0).abs() > MIDPOINT_SPACING {
+                return Err(at_line(
+                    &name,
+                    rows[i + 1].0,
+                    &format!(
+                        "`{key}` must be evenly spaced in ln d (ratio {} here, {} at first); \
+                         give uneven classes by their edges, `lower` and `upper`",
+                        w[1] / w[0],
+                        mids[1] / mids[0]
+                    ),
+                ));
+            }
+        }
         let n = mids.len();
         let inner: Vec<f64> = mids.windows(2).map(|w| (w[0] * w[1]).sqrt()).collect();
         for (i, (_, class)) in rows.iter_mut().enumerate() {
@@ -669,14 +703,12 @@ fn size_classes(path: &Path, density: f64) -> Result<Vec<SizeClass>, Error> {
         let row: Option<usize> =
             e.field.strip_prefix("size_bins[").and_then(|rest| rest.split(']').next()).and_then(|i| i.parse().ok());
         match row {
-            Some(i) => format!(
-                "{name} line {}: {} = {} {}",
+            Some(i) => at_line(
+                &name,
                 rows[i].0,
-                e.field.split('.').next_back().unwrap_or(""),
-                e.value,
-                e.requirement
+                &format!("{} = {} {}", e.field.split('.').next_back().unwrap_or(""), e.value, e.requirement),
             ),
-            None => format!("{name}: {} {}", e.value, e.requirement),
+            None => format!("{name}: the size classes {}", e.requirement),
         }
     })?;
     Ok(classes)

@@ -11,8 +11,10 @@
 //! A room study tracks one size at a time, so a distribution is cut into bins in `ln d`
 //! ([`Distribution::bins`]): the modes of one particle density share [`DEFAULT_BINS`] equal
 //! steps in `ln d` from their smallest count median over `sigma_g^3` to their largest mass
-//! median times `sigma_g^3` (more than 99.8 % of each mode's number and of its mass), or
-//! the range given; a class list's bins are its classes. Each
+//! median times `sigma_g^3` (for a mode alone, from 3 standard deviations below the median
+//! to `3 + 3 ln sigma_g` above it for its number, and the mirror for its mass: at least
+//! 99.73 % of each, more than 99.8 % for `sigma_g` above 1.08), or the range given; a class list's bins are its classes. A bin holding next to none of its
+//! density's number and mass ([`NEGLIGIBLE`]) is not run. Each
 //! bin's number and mass are integrated exactly (for a mode from its lognormal distribution
 //! function; in a class, number or mass as given, spread uniformly in `ln d`), and the bin's
 //! particles all share the fate of one run at its geometric midpoint `sqrt(lower upper)`:
@@ -23,26 +25,32 @@
 //! Its error has two parts, both reported ([`Portion`]): the runs' randomness (each `f_i` a
 //! share of `n_i` independent particles, binomial variance `f_i (1 - f_i) / n_i`), and the
 //! quadrature's, from taking `f` constant across a bin. A bin reaches halfway (in `ln d`) to
-//! its neighbours' midpoints, so where `f` is monotonic across it, `f` within the bin stays
-//! within half the step to the neighbour on either side: the bound reported is
-//! `sum_i M_i max_j |f_j - f_i| / 2` over the bin's neighbours `j` (of the same density). It is
-//! a first-order bound (where `f` is smooth the midpoint error is second order, far smaller:
-//! 0.0013 under a bound of 0.155 in the test on 8 bins), and halving the bins' width halves
-//! it. A fate no particle of a bin's run took counts 0 with no error for that bin.
+//! its neighbours' midpoints, so where `f` is monotonic from one neighbour's midpoint to the
+//! other's, `f` within the bin lies between `f_i` and the neighbours' values: the bound
+//! reported is `sum_i M_i max_j |f_j - f_i|` over the bin's neighbours `j` (of the same
+//! density). An outer bin reaches the range's edge, beyond its run: there `f` goes on
+//! monotonically away from its neighbour's value, bounded only by 0 or 1, and its bound
+//! takes that too. It is a bound under monotonicity only (a share with a minimum or maximum
+//! across a bin, like the walls' or the airborne one, may exceed it there), and a loose one:
+//! where `f` is smooth the midpoint error is second order, far smaller (0.0013 under a bound
+//! of 0.32 in the test on 8 bins). Narrower bins shrink it. A fate no particle of a bin's run
+//! took counts 0 with no error for that bin; the rule of three bounds what it may hold there,
+//! `M_i 3 / n_i` at 95 % ([`Portion::unseen_bound`]).
 //!
 //! ## PM2.5 and PM10
 //! PM2.5 and PM10 are the mass of particles of aerodynamic diameter below 2.5 um and 10 um.
 //! The standards define them by size-selective inlets of 50 % efficiency at those aerodynamic
-//! diameters (EU Directive 2008/50/EC, Art. 2, with the reference samplers of EN 12341 and
-//! EN 14907; the conventions of ISO 7708:1995); depo takes the idealised sharp cut at the 50 %
-//! point: all particles below, none above. A particle's aerodynamic diameter (Hinds 1999,
-//! Eq. 3.26, a sphere) is the diameter of the unit-density sphere (1000 kg/m^3) that settles
+//! diameters (EU Directive 2008/50/EC, Art. 2, with the reference method of EN 12341:2014,
+//! which replaced EN 12341:1998 for PM10 and EN 14907:2005 for PM2.5; the conventions of ISO
+//! 7708:1995); depo takes the idealised sharp cut at the 50 % point: all particles below,
+//! none above. A particle's aerodynamic diameter (Hinds 1999, Sec. 3.6; a sphere) is the diameter of the unit-density sphere (1000 kg/m^3) that settles
 //! as fast, with the slip correction of each: `d_a^2 Cc(d_a) 1000 = d^2 Cc(d) rho_p`
 //! ([`aerodynamic_diameter`]). The cut falls within a bin; the bin's mass below it is
 //! integrated exactly and shares the bin's fate.
 //!
 //! References: Hinds, *Aerosol Technology* (2nd ed., 1999), Sec. 4.4-4.5 (lognormal
-//! distribution, the Hatch-Choate equations) and Sec. 3.10 (aerodynamic diameter).
+//! distribution, the Hatch-Choate equations, the diameters of average) and Sec. 3.6
+//! (aerodynamic diameter).
 
 use std::f64::consts::{PI, SQRT_2};
 
@@ -57,8 +65,15 @@ pub const PM_CUTS: [f64; 2] = [2.5e-6, 10e-6];
 /// The density that defines the aerodynamic diameter, kg/m^3.
 pub const UNIT_DENSITY: f64 = 1000.0;
 
-/// Bins per mode unless given.
+/// Bins per density unless given (the modes of one density share them).
 pub const DEFAULT_BINS: usize = 12;
+
+/// A bin holding no more than this share of its density's number and of its mass is not run.
+pub const NEGLIGIBLE: f64 = 1e-9;
+
+/// The largest geometric standard deviation a mode may have. Measured aerosol modes stay
+/// well below (2 to 3 is broad); at 30, `sigma_g^3` takes the bins to 3e11 m.
+pub const MAX_GEOMETRIC_SD: f64 = 5.0;
 
 /// The Hatch-Choate equation (Hinds 1999, Sec. 4.5): the median of the `q`-th moment
 /// distribution of a lognormal count distribution with count median `count_median` and
@@ -83,11 +98,20 @@ pub fn count_median(mass_median: f64, geometric_sd: f64) -> f64 {
     hatch_choate(mass_median, geometric_sd, -3.0)
 }
 
+/// The diameter of average `p`-th power of a lognormal count distribution, `(mean d^p)^(1/p)
+/// = CMD exp(p ln^2 sigma_g / 2)` (Hinds 1999, Sec. 4.5, the Hatch-Choate equation for the
+/// diameter of average property; not the `q`-th moment median of [`hatch_choate`]): `p = 2`
+/// the diameter of average surface, `p = 3` of average mass.
+#[must_use]
+pub fn average_diameter(count_median: f64, geometric_sd: f64, p: f64) -> f64 {
+    count_median * (p / 2.0 * geometric_sd.ln().powi(2)).exp()
+}
+
 /// Mean mass of a particle of a lognormal count distribution, kg: `rho pi d_m^3 / 6` with the
-/// diameter of average mass `d_m = CMD exp(1.5 ln^2 sigma_g)` (Hinds 1999, Sec. 4.5).
+/// diameter of average mass `d_m = CMD exp(1.5 ln^2 sigma_g)` ([`average_diameter`], `p = 3`).
 #[must_use]
 pub fn mean_particle_mass(count_median: f64, geometric_sd: f64, density: f64) -> f64 {
-    density * PI / 6.0 * hatch_choate(count_median, geometric_sd, 1.5).powi(3)
+    density * PI / 6.0 * average_diameter(count_median, geometric_sd, 3.0).powi(3)
 }
 
 /// Share of a lognormal distribution of median `median` and geometric standard deviation
@@ -125,7 +149,7 @@ fn equal_settling(diameter: f64, from: f64, to: f64, air: &Air) -> f64 {
 }
 
 /// Aerodynamic diameter of a sphere of `diameter` (m) and `density` (kg/m^3) in `air` (Hinds
-/// 1999, Eq. 3.26): `d_a` with `d_a^2 Cc(d_a) 1000 kg/m^3 = d^2 Cc(d) rho_p`.
+/// 1999, Sec. 3.6): `d_a` with `d_a^2 Cc(d_a) 1000 kg/m^3 = d^2 Cc(d) rho_p`.
 #[must_use]
 pub fn aerodynamic_diameter(diameter: f64, density: f64, air: &Air) -> f64 {
     equal_settling(diameter, density, UNIT_DENSITY, air)
@@ -177,7 +201,8 @@ impl Amount {
 pub struct Mode {
     /// Its count or mass median diameter.
     pub median: Median,
-    /// Geometric standard deviation `sigma_g >= 1` (the same for number and mass).
+    /// Geometric standard deviation, from 1 to [`MAX_GEOMETRIC_SD`] (the same for number and
+    /// mass).
     pub geometric_sd: f64,
     /// Particle density, kg/m^3.
     pub density: f64,
@@ -211,8 +236,8 @@ impl Mode {
             Median::Mass(d) => ("mass_median", d),
         };
         positive(key, median)?;
-        if !(self.geometric_sd.is_finite() && self.geometric_sd >= 1.0) {
-            return Err(SceneError::new("geometric_sd", self.geometric_sd, "must be finite and >= 1"));
+        if !((1.0..=MAX_GEOMETRIC_SD).contains(&self.geometric_sd)) {
+            return Err(SceneError::new("geometric_sd", self.geometric_sd, "must be from 1 to 5"));
         }
         positive("density", self.density)?;
         let key = match self.amount {
@@ -395,8 +420,14 @@ impl Distribution {
                     if !(c.density.is_finite() && c.density > 0.0) {
                         return Err(bad("density", c.density, "must be finite and positive"));
                     }
-                    if i > 0 && c.lower < classes[i - 1].upper * (1.0 - 1e-9) {
-                        return Err(bad("lower", c.lower, "must not be below the previous class's upper edge"));
+                    // Classes of one density must not overlap; another density's may.
+                    let previous = classes[..i].iter().rev().find(|p| p.density == c.density);
+                    if previous.is_some_and(|p| c.lower < p.upper * (1.0 - 1e-9)) {
+                        return Err(bad(
+                            "lower",
+                            c.lower,
+                            "must not be below the upper edge of the previous class of its density",
+                        ));
                     }
                 }
                 if classes.iter().all(|c| c.amount == 0.0) {
@@ -415,12 +446,7 @@ impl Distribution {
         let cuts = |density: f64| PM_CUTS.map(|c| diameter_of_aerodynamic(c, density, air));
         match self {
             Self::Classes(classes) => {
-                let mut densities: Vec<f64> = Vec::new();
-                for c in classes {
-                    if !densities.contains(&c.density) {
-                        densities.push(c.density);
-                    }
-                }
+                let densities = first_seen(classes.iter().map(|c| c.density));
                 let mut bins = Vec::new();
                 for &rho in &densities {
                     let cut = cuts(rho);
@@ -454,12 +480,7 @@ impl Distribution {
                         }
                     })
                     .collect();
-                let mut densities: Vec<f64> = Vec::new();
-                for m in modes {
-                    if !densities.contains(&m.density) {
-                        densities.push(m.density);
-                    }
-                }
+                let densities = first_seen(modes.iter().map(|m| m.density));
                 // Each density's bins span its own modes, unless a range is given.
                 let edges = |rho: f64| -> Vec<f64> {
                     let [lo, hi] = range.unwrap_or_else(|| {
@@ -479,6 +500,9 @@ impl Distribution {
                 let mut inside = 0.0;
                 for &rho in &densities {
                     let cut = cuts(rho);
+                    // The density's number and mass, to tell the bins that hold none of them.
+                    let own = modes.iter().zip(&totals).filter(|(m, _)| m.density == rho);
+                    let (number_total, mass_total) = own.fold((0.0, 0.0), |(n, m), (_, t)| (n + t.0, m + t.1));
                     for w in edges(rho).windows(2) {
                         let (a, b) = (w[0], w[1]);
                         let mut bin = Bin {
@@ -499,6 +523,11 @@ impl Distribution {
                                 bin.pm_mass[k] += mass * (below(b.min(c)) - below(a)).max(0.0);
                             }
                         }
+                        // A bin with next to nothing in it is not run (sigma_g 1 puts all in
+                        // one of them); its crumbs count as outside.
+                        if bin.mass <= NEGLIGIBLE * mass_total && bin.number <= NEGLIGIBLE * number_total {
+                            continue;
+                        }
                         inside += bin.mass;
                         bins.push(bin);
                     }
@@ -508,6 +537,18 @@ impl Distribution {
             }
         }
     }
+}
+
+/// The distinct densities (or any values) of `values`, in the order they first come.
+#[must_use]
+pub fn first_seen(values: impl IntoIterator<Item = f64>) -> Vec<f64> {
+    let mut seen: Vec<f64> = Vec::new();
+    for v in values {
+        if !seen.contains(&v) {
+            seen.push(v);
+        }
+    }
+    seen
 }
 
 fn positive(field: &str, v: f64) -> Result<(), SceneError> {
@@ -556,9 +597,13 @@ pub struct Portion {
     pub value: f64,
     /// Its standard error over the runs' randomness.
     pub error: f64,
-    /// The bound on the quadrature's error (see the module docs); NaN where a bin with mass
-    /// has no neighbour to bound it by.
+    /// The bound on the quadrature's error where each fate's share is monotonic across the
+    /// bins (see the module docs); NaN where a bin with mass has no neighbour to bound it by.
     pub quadrature: f64,
+    /// The bins whose run had no particle in this fate count 0 with no error; by the rule of
+    /// three, a 95 % upper bound on what each holds is `M_i 3 / n_i`: their sum (0 when every
+    /// bin's run saw the fate).
+    pub unseen_bound: f64,
 }
 
 /// Where a distribution's mass (or its PM2.5 or PM10 part) went.
@@ -574,12 +619,15 @@ pub struct MassSplit {
     pub exhausted: Portion,
     /// Escaped the domain.
     pub escaped: Portion,
-    /// The loss rate of the mass, 1/s: `sum_i M_i beta_i / sum_i M_i`, the rate at which
-    /// deposition removes airborne mass while its size distribution is the injected one
-    /// (deposition then takes the fast-depositing sizes first and the rate falls). Its
-    /// `events` are the runs' together; its error carried from theirs. Only over the bins
-    /// whose run measured a `beta` (see [`MassSplit::beta_share`]).
-    pub beta: Estimate,
+    /// The deposition loss rate of the mass, 1/s: `sum_i M_i beta_i / sum_i M_i`, the rate
+    /// at which deposition (not ventilation) removes airborne mass while its size
+    /// distribution is the injected one (deposition then takes the fast-depositing sizes
+    /// first and the rate falls). Its `events` are the runs' together; its error carried from
+    /// theirs; its upper bound the runs' bounds weighted alike. Only over the bins whose run
+    /// measured a `beta` (see [`MassSplit::beta_share`]): the bins left out are the
+    /// fastest-settling ones, so over all the mass the rate is at least this. None when no
+    /// bin's run measured one.
+    pub beta: Option<Estimate>,
     /// The share of the mass whose bins' runs measured a `beta`: a run whose particles all
     /// settled before its averaging window began has none (coarse particles in a short
     /// room), and its mass is left out of [`MassSplit::beta`].
@@ -612,6 +660,32 @@ pub struct MassBalance {
     pub absolute: bool,
 }
 
+/// The variance of a share `f` of `n` independent particles, `f (1 - f) / n`.
+#[must_use]
+pub fn binomial_variance(f: f64, n: f64) -> f64 {
+    f * (1.0 - f) / n
+}
+
+/// The bound on `|f(d) - f_i|` across a bin whose run found the share `f_i`, from its
+/// neighbours' shares, where `f` is monotonic from one neighbour's midpoint to the other's:
+/// within the bin `f` lies between `f_i` and each neighbour's, so the full step to the
+/// farther one bounds it. An outer bin (one neighbour) reaches on its other side to the
+/// range's edge, where nothing bounds `f` but monotonicity: it goes on away from the
+/// neighbour's value, at most to 0 (or 1). None without a neighbour.
+fn quadrature_bound(f: f64, neighbours: impl Iterator<Item = f64>) -> Option<f64> {
+    let neighbours: Vec<f64> = neighbours.collect();
+    let step =
+        neighbours.iter().map(|g| (g - f).abs()).fold(None, |m: Option<f64>, s| Some(m.map_or(s, |m| m.max(s))))?;
+    Some(match neighbours[..] {
+        // Rising towards the neighbour, so falling towards the edge (at most to 0), or the
+        // other way; level, either way.
+        [g] if g > f => step.max(f),
+        [g] if g < f => step.max(1.0 - f),
+        [_] => step.max(f).max(1.0 - f),
+        _ => step,
+    })
+}
+
 /// The split of `weights[i]` (each bin's mass, or a part of it) by the fates of each bin's run
 /// (module docs: `X = sum_i M_i f_i` with its statistical error and quadrature bound).
 /// `bins` and `fates` pair up; neighbours for the bound are adjacent bins of one density.
@@ -636,12 +710,13 @@ pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
         let mut variance = 0.0;
         for i in 0..n {
             let (w, f) = (weights[i], shares[i][k]);
+            let n = fates[i].particles.max(1) as f64;
             p.value += w * f;
-            variance += w * w * f * (1.0 - f) / fates[i].particles.max(1) as f64;
-            let spread = neighbours(i)
-                .map(|j| (shares[j][k] - f).abs() / 2.0)
-                .fold(None, |m: Option<f64>, s| Some(m.map_or(s, |m| m.max(s))));
-            p.quadrature += match spread {
+            variance += w * w * binomial_variance(f, n);
+            if f == 0.0 {
+                p.unseen_bound += w * 3.0 / n;
+            }
+            p.quadrature += match quadrature_bound(f, neighbours(i).map(|j| shares[j][k])) {
                 Some(s) => w * s,
                 None if w > 0.0 => f64::NAN,
                 None => 0.0,
@@ -653,21 +728,29 @@ pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
     let injected: f64 = weights.iter().sum();
     // Over the bins whose run measured a beta: a run whose particles all deposited before its
     // averaging window has no exposure to measure it by (its upper bound is infinite).
-    let (mut rate, mut variance, mut events, mut measured) = (0.0, 0.0, 0, 0.0);
+    let (mut rate, mut variance, mut events, mut measured, mut bound) = (0.0, 0.0, 0, 0.0, 0.0);
     for (w, f) in weights.iter().zip(fates).filter(|(_, f)| f.beta.upper_bound.is_finite()) {
         rate += w * f.beta.value;
         variance += (w * f.beta.error).powi(2);
         events += f.beta.events;
         measured += w;
+        bound += w * f.beta.upper_bound;
     }
-    let (value, error) = if measured > 0.0 { (rate / measured, variance.sqrt() / measured) } else { (0.0, 0.0) };
+    // The runs' bounds (value plus two errors, or the rule of three without events), weighted
+    // as their values are.
+    let beta = (measured > 0.0).then(|| Estimate {
+        value: rate / measured,
+        error: variance.sqrt() / measured,
+        events,
+        upper_bound: bound / measured,
+    });
     MassSplit {
         injected,
         deposited: [portion(0), portion(1), portion(2)],
         airborne: portion(3),
         exhausted: portion(4),
         escaped: portion(5),
-        beta: Estimate { value, error, events, upper_bound: value + 2.0 * error },
+        beta,
         beta_share: if injected > 0.0 { measured / injected } else { 0.0 },
     }
 }
@@ -725,11 +808,12 @@ impl DistributionStudy {
             };
             let done = points.len();
             points.extend(study.run(|k| progress(done + k)).map_err(|mut e| {
-                // The sizes are the distribution's, not a list of diameters.
+                // The sizes are the distribution's, not a list of diameters: the value is a
+                // bin's diameter.
                 if e.field == "particles.diameters" {
                     e.field = match self.distribution {
-                        Distribution::Modes { .. } => "particles.modes",
-                        Distribution::Classes(_) => "particles.size_bins",
+                        Distribution::Modes { .. } => "particles.modes (a bin's diameter, m)",
+                        Distribution::Classes(_) => "particles.size_bins (a bin's diameter, m)",
                     }
                     .into();
                 }
@@ -768,6 +852,9 @@ mod tests {
         assert!((count_median(4.226436e-6, s) / 1e-6 - 1.0).abs() < 1e-6);
         // Surface median, q = 2: exp(0.960906) = 2.614063 um.
         assert!((hatch_choate(cmd, s, 2.0) / 2.614063e-6 - 1.0).abs() < 1e-6);
+        // Diameters of average surface and mass: exp(0.480453) = 1.616807 um, 2.055830 um.
+        assert!((average_diameter(cmd, s, 2.0) / 1.616807e-6 - 1.0).abs() < 1e-6);
+        assert!((average_diameter(cmd, s, 3.0) / 2.055830e-6 - 1.0).abs() < 1e-6);
         // Mean particle mass at 1000 kg/m^3: pi / 6 (2.055830e-6)^3 1000 = 4.549462e-15 kg.
         let m = mean_particle_mass(cmd, s, 1000.0);
         assert!((m / 4.549462e-15 - 1.0).abs() < 1e-5, "{m}");
@@ -823,6 +910,25 @@ mod tests {
         }
     }
 
+    /// PM2.5 and PM10 of a dense mode cut at the geometric diameter of the aerodynamic cut, by
+    /// hand: MMD 3 um, sigma_g 2, 2500 kg/m^3, `lambda = 0.066434 um` (standard air). 2.5 um
+    /// aerodynamic is `d = 2.5 um sqrt(1000 Cc(2.5 um) / (2500 Cc(d)))`, iterated from
+    /// `2.5 um sqrt(0.4)` = 1.5811 um: 1.5549, 1.5537, 1.55368 um; its `z = ln(1.55368 / 3) /
+    /// ln 2` = -0.94927 and `Phi(z)` = 17.1240 % of the mass. 10 um aerodynamic: 6.29627 um,
+    /// `z` = 1.06954, 85.7586 %. (Ignoring the density, the cuts would take 39.6 % and 95.9 %.)
+    #[test]
+    fn pm_shares_of_a_dense_mode_match_hand_values() {
+        let mode =
+            Mode { median: Median::Mass(3e-6), geometric_sd: 2.0, density: 2500.0, amount: Amount::MassShare(1.0) };
+        for bins in [1, 5, 7] {
+            let distribution = Distribution::Modes { modes: vec![mode], bins, range: Some([1e-9, 1e-3]) };
+            let (bins, outside) = distribution.bins(&Air::standard()).unwrap();
+            assert!(outside < 1e-12);
+            let pm = |k: usize| bins.iter().map(|b| b.pm_mass[k]).sum::<f64>();
+            assert!((pm(0) - 0.171_240).abs() < 2e-6 && (pm(1) - 0.857_586).abs() < 2e-6, "{} {}", pm(0), pm(1));
+        }
+    }
+
     /// A size class of mass uniform in `ln d` from 1 to 4 um: a cut at 2 um takes half its
     /// mass; given by number instead, `(2^3 - 1) / (4^3 - 1) = 7 / 63` of it.
     #[test]
@@ -860,8 +966,11 @@ mod tests {
 
     /// The split by hand: two bins of mass 2 and 1, their runs putting 10 % and 40 % of 100
     /// particles on the floor: 0.2 + 0.4 = 0.6 on the floor, binomial error
-    /// `sqrt(4 (0.1 0.9) / 100 + 1 (0.4 0.6) / 100)` = 0.07746, quadrature bound
-    /// `(2 + 1) |0.4 - 0.1| / 2` = 0.45. Every part adds up to the injected 3 again, and the
+    /// `sqrt(4 (0.1 0.9) / 100 + 1 (0.4 0.6) / 100)` = 0.07746. Quadrature bound: both bins
+    /// are outer ones; the first's share rises towards its neighbour (0.1 to 0.4), so towards
+    /// the edge it may fall to 0: `max(0.3, 0.1)`; the second's falls towards its neighbour,
+    /// so towards the edge it may rise to 1: `max(0.3, 0.6)`; `2 0.3 + 1 0.6` = 1.2. A middle
+    /// bin of share 0.2 between them bounds by its full step to the farther, 0.2. Every part adds up to the injected 3 again, and the
     /// mass-weighted beta is `(2 1e-4 + 1 5e-4) / 3`.
     #[test]
     fn integration_matches_hand_values_and_balances() {
@@ -871,11 +980,23 @@ mod tests {
         let floor = split.deposited[0];
         assert!((floor.value - 0.6).abs() < 1e-12, "{floor:?}");
         assert!((floor.error - 0.077_459_7).abs() < 1e-6, "{floor:?}");
-        assert!((floor.quadrature - 0.45).abs() < 1e-12);
+        assert!((floor.quadrature - 1.2).abs() < 1e-12, "{floor:?}");
+        // Every run saw the floor; the second saw no ceiling deposit (1 3 / 100), neither an
+        // escape ((2 + 1) 3 / 100).
+        assert_eq!(floor.unseen_bound, 0.0);
+        assert!((split.deposited[1].unseen_bound - 0.03).abs() < 1e-15, "{:?}", split.deposited[1]);
+        assert!((split.escaped.unseen_bound - 0.09).abs() < 1e-15, "{:?}", split.escaped);
+        let three = [bin(1e-6, 2.0), bin(2e-6, 1.0), bin(3e-6, 1.0)];
+        let middle = fates(100, [20, 0, 0], 80, 0, 1e-4);
+        let inner = integrate(&three, &[runs[0], middle, runs[1]], &[0.0, 1.0, 0.0]).deposited[0];
+        assert!((inner.quadrature - 0.2).abs() < 1e-12, "{inner:?}");
         assert!((split.airborne.value - (2.0 * 0.6 + 0.3)).abs() < 1e-12);
         assert!((split.exhausted.value - 0.75).abs() < 1e-12);
         assert!((split.accounted() - split.injected).abs() <= 1e-15 * split.injected);
-        assert!((split.beta.value - 7e-4 / 3.0).abs() < 1e-18);
+        let beta = split.beta.unwrap();
+        assert!((beta.value - 7e-4 / 3.0).abs() < 1e-18);
+        // The runs' upper bounds 1.2e-4 and 6e-4, weighted by 2 and 1: 8.4e-4 / 3.
+        assert!((beta.upper_bound - 8.4e-4 / 3.0).abs() < 1e-18, "{beta:?}");
         assert_eq!(split.beta_share, 1.0);
         // One bin alone has no neighbour to bound its quadrature by.
         assert!(integrate(&bins[..1], &runs[..1], &[2.0]).deposited[0].quadrature.is_nan());
@@ -884,7 +1005,11 @@ mod tests {
         let mut unmeasured = runs;
         unmeasured[1].beta = Estimate { value: 0.0, error: 0.0, events: 0, upper_bound: f64::INFINITY };
         let split = integrate(&bins, &unmeasured, &[2.0, 1.0]);
-        assert!((split.beta.value - 1e-4).abs() < 1e-18 && (split.beta_share - 2.0 / 3.0).abs() < 1e-15);
+        assert!((split.beta.unwrap().value - 1e-4).abs() < 1e-18 && (split.beta_share - 2.0 / 3.0).abs() < 1e-15);
+        // With no run measuring one, the mass has no beta: none, not 0 +- 0.
+        unmeasured[0].beta = unmeasured[1].beta;
+        let split = integrate(&bins, &unmeasured, &[2.0, 1.0]);
+        assert_eq!((split.beta, split.beta_share), (None, 0.0));
     }
 
     /// The quadrature bound holds: a smooth settling-like share `f(d) = 1 - exp(-(d / 3 um)^2)`
@@ -923,6 +1048,47 @@ mod tests {
         assert!((0.4..0.6).contains(&ratio), "{ratio}");
     }
 
+    /// Classes of two densities may cover the same sizes; classes of one density may not
+    /// overlap, whatever comes between them.
+    #[test]
+    fn classes_overlap_only_across_densities() {
+        let class = |lower: f64, upper: f64, density: f64| SizeClass {
+            lower,
+            upper,
+            amount: 1e-9,
+            quantity: Quantity::Mass,
+            density,
+        };
+        let ok = Distribution::Classes(vec![class(1e-6, 2e-6, 1000.0), class(1e-6, 2e-6, 2000.0)]);
+        assert!(ok.validate().is_ok());
+        let overlap = Distribution::Classes(vec![
+            class(1e-6, 2e-6, 1000.0),
+            class(3e-6, 4e-6, 2000.0),
+            class(1.5e-6, 3e-6, 1000.0),
+        ]);
+        assert_eq!(overlap.validate().unwrap_err().field, "size_bins[2].lower");
+    }
+
+    /// A monodisperse mode (sigma_g 1) puts all its particles in one of its 12 bins: only that
+    /// one is run, holding all the mass; two far-apart modes of one density leave the bins
+    /// between them empty, and those are not run either.
+    #[test]
+    fn empty_bins_are_not_run() {
+        let mode =
+            Mode { median: Median::Mass(2e-6), geometric_sd: 1.0, density: 1000.0, amount: Amount::MassShare(1.0) };
+        let one = Distribution::Modes { modes: vec![mode], bins: DEFAULT_BINS, range: None };
+        let (bins, outside) = one.bins(&Air::standard()).unwrap();
+        assert_eq!(bins.len(), 1, "{bins:?}");
+        assert!((bins[0].mass - 1.0).abs() < 1e-12 && outside < 1e-12);
+        // 2 and 100 um, sigma_g 1.1, over 12 bins from 1.46 to 133 um (0.38 in ln d each); the
+        // modes (3 ln sigma_g = 0.29 either side) fill two or three bins each, of the twelve.
+        let far = Mode { median: Median::Mass(100e-6), ..mode };
+        let narrow = |m: Mode| Mode { geometric_sd: 1.1, ..m };
+        let two = Distribution::Modes { modes: vec![narrow(mode), narrow(far)], bins: 12, range: None };
+        let (bins, _) = two.bins(&Air::standard()).unwrap();
+        assert!(bins.len() <= 6, "{}", bins.len());
+    }
+
     /// Modes mixing shares of number and of mass, or shares and concentrations, are errors
     /// naming them; so is a mode's bad value, by its index and key.
     #[test]
@@ -936,6 +1102,10 @@ mod tests {
         assert_eq!(modes(vec![mode, absolute]).validate().unwrap_err().field, "modes");
         let narrow = Mode { geometric_sd: 0.5, ..mode };
         assert_eq!(modes(vec![mode, narrow]).validate().unwrap_err().field, "modes[1].geometric_sd");
+        // sigma_g 30 would take the bins to 3e11 m; 5 is the most.
+        let broad = Mode { geometric_sd: 30.0, ..mode };
+        assert_eq!(modes(vec![mode, broad]).validate().unwrap_err().field, "modes[1].geometric_sd");
+        assert!(modes(vec![Mode { geometric_sd: 5.0, ..mode }]).validate().is_ok());
         assert!(modes(vec![mode, mode]).validate().is_ok());
     }
 }
