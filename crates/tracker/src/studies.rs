@@ -14,6 +14,10 @@
 //! steady deposition rate that does not wait for the Brownian sublayer to fill, and in the
 //! room at 0.1 um six to eight times as efficient as plain tracking (`1 / (error^2 time)`;
 //! see `docs/performance-log.md`). `excursions: false` gives plain tracking, for comparison.
+//! A furnished room ([`Scene::furnishings`]) is always tracked plainly: excursions split
+//! particles by their gap to the room's walls alone and are not run with furnishings (the
+//! scene refuses them), so the study falls back to plain tracking there and says so in
+//! [`RoomPoint::excursions`].
 
 use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
@@ -154,15 +158,21 @@ pub struct RoomPoint {
     pub indoor_outdoor: Option<Estimate>,
     /// The wall-law tallies summed over all surfaces.
     pub tally: WallTally,
-    /// Deposition maps, one per wall in id order (floor, ceiling, x0, x1, y0, y1), each on a
-    /// [`MAP_BINS`] grid over the wall's two in-plane axes in the order x, y, z (rows, columns):
-    /// the floor's over x and y, the `x0`/`x1` walls' over y and z.
+    /// Deposition maps, one per surface in id order (floor, ceiling, x0, x1, y0, y1, then the
+    /// furnishings' faces), each on a [`MAP_BINS`] grid over the surface's two in-plane axes in
+    /// the order x, y, z (rows, columns): the floor's over x and y, the `x0`/`x1` walls' over
+    /// y and z; a furnishing face's over the box's extent.
     pub maps: Vec<Vec<u32>>,
     /// Deposited count and mass (kg) of the tracked particles over the whole run onto the
-    /// floor, the ceiling and the vertical walls.
+    /// room's floor, ceiling and vertical walls (the furnishings' faces are in `furnishings`).
     pub deposited: [(usize, f64); 3],
+    /// Each furnishing's deposition figures, in the order of [`Scene::furnishings`].
+    pub furnishings: Vec<FurnishingPoint>,
+    /// All surfaces' area over the air's volume, 1/m ([`Scene::surface_to_volume`]).
+    pub surface_to_volume: f64,
     /// Count and mass (kg) of the tracked particles released, exhausted by ventilation, and
-    /// still in the air at the end: with `deposited`, the whole release, exactly.
+    /// still in the air at the end: with `deposited` and the furnishings' deposits, the whole
+    /// release, exactly.
     pub released: (usize, f64),
     /// Exhausted, count and kg.
     pub exhausted: (usize, f64),
@@ -177,6 +187,25 @@ pub struct RoomPoint {
     /// Where the tracked particles are at the end of the run (with ventilation, the exhausted
     /// ones too): the mass balance a size distribution's is summed from.
     pub balance: Balance,
+}
+
+/// One furnishing's figures in a room study.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FurnishingPoint {
+    /// Its name ([`Furnishing::label`](crate::Furnishing::label)).
+    pub name: String,
+    /// The area of its faces, m^2.
+    pub area: f64,
+    /// Deposition velocity onto all its faces together, m/s.
+    pub all: Estimate,
+    /// Onto each face, in face order (bottom, top, x0, x1, y0, y1), m/s.
+    pub faces: [Estimate; 6],
+    /// Onto its four vertical faces together, m/s.
+    pub sides: Estimate,
+    /// Deposited count and mass (kg) over the whole run, on all its faces.
+    pub deposited: (usize, f64),
+    /// Deposited count and mass (kg) per face.
+    pub face_deposited: [(usize, f64); 6],
 }
 
 /// The deposition maps' grid.
@@ -235,7 +264,7 @@ impl RoomStudy {
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let mut scene = self.scene.clone();
             scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
-            if self.excursions {
+            if self.excursions && scene.furnishings.is_empty() {
                 // Down to 0.05 wall units (75 um at u* = 1 cm/s), inside the Brownian sublayer
                 // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
                 // pilot has 500 particles, or a quarter of a smaller first run.
@@ -278,7 +307,37 @@ impl RoomStudy {
                 particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
                 tally: total(&result.tallies),
-                maps: (0..result.walls.len()).map(|w| result.deposition_map(w, size, MAP_BINS)).collect(),
+                maps: result
+                    .walls
+                    .iter()
+                    .map(|w| match w.furnishing {
+                        None => result.deposition_map(w.id, size, MAP_BINS),
+                        Some(k) => {
+                            let b = &scene.furnishings[k];
+                            result.deposition_map_within(w.id, b.low, b.high, MAP_BINS)
+                        }
+                    })
+                    .collect(),
+                furnishings: scene
+                    .furnishings
+                    .iter()
+                    .enumerate()
+                    .map(|(k, b)| {
+                        let faces = result.furnishing_faces(k);
+                        let face_deposited: [(usize, f64); 6] =
+                            std::array::from_fn(|f| (balance.deposited[faces[f]], balance.deposited_mass[faces[f]]));
+                        FurnishingPoint {
+                            name: b.label(k),
+                            area: b.area(),
+                            all: result.deposition_velocity(&faces),
+                            faces: std::array::from_fn(|f| result.deposition_velocity(&faces[f..=f])),
+                            sides: result.deposition_velocity(&faces[2..]),
+                            deposited: face_deposited.iter().fold((0, 0.0), |(n, m), &(dn, dm)| (n + dn, m + dm)),
+                            face_deposited,
+                        }
+                    })
+                    .collect(),
+                surface_to_volume: result.surface_to_volume(),
                 deposited: [Orientation::Floor, Orientation::Ceiling, Orientation::Wall].map(|o| {
                     result
                         .walls_facing(o)

@@ -17,11 +17,16 @@ use super::{normals_per_step, Fate, Flyer, Prepared, Record, Step, WallTally};
 pub struct ParticleTally {
     /// Airborne time within the averaging window, s.
     pub exposure: f64,
-    /// Deposits within the averaging window, per wall id: the particle's own without
-    /// excursions, its excursions' weighted deposits with them.
+    /// Deposits within the averaging window, per wall id (the room's six walls, or a
+    /// channel's two): the particle's own without excursions, its excursions' weighted
+    /// deposits with them.
     pub deposited: [f64; 6],
     /// Deposit events behind `deposited`, per wall id (unweighted).
     pub events: [u32; 6],
+    /// The particle's own deposit within the averaging window on a furnishing's face: the
+    /// surface's id (6 and up). Furnished scenes are tracked plainly, without excursions, so a
+    /// particle deposits at most once there. [`ParticleTally::deposited_on`] reads both.
+    pub on_furnishing: Option<usize>,
     /// Excursions started.
     pub excursions: u32,
     /// Weight of the excursions' branches given up at [`Excursions::max_duration`] while
@@ -42,6 +47,7 @@ impl Default for ParticleTally {
             exposure: 0.0,
             deposited: [0.0; 6],
             events: [0; 6],
+            on_furnishing: None,
             excursions: 0,
             truncated: 0.0,
             arrivals: [0.0; MAX_LEVELS],
@@ -57,11 +63,39 @@ impl ParticleTally {
         let mut t = Self { exposure: overlap(0.0, record.time, window), ..Self::default() };
         if let Fate::Deposited(w) = record.fate {
             if record.time >= window[0] && record.time <= window[1] {
-                t.deposited[w] = 1.0;
-                t.events[w] = 1;
+                if w < t.deposited.len() {
+                    t.deposited[w] = 1.0;
+                    t.events[w] = 1;
+                } else {
+                    t.on_furnishing = Some(w);
+                }
             }
         }
         t
+    }
+
+    /// Deposits within the averaging window on surface `w` (a wall, or a furnishing's face).
+    #[must_use]
+    pub fn deposited_on(&self, w: usize) -> f64 {
+        match self.deposited.get(w) {
+            Some(&d) => d,
+            None => f64::from(u8::from(self.on_furnishing == Some(w))),
+        }
+    }
+
+    /// Deposit events within the averaging window on surface `w` (unweighted).
+    #[must_use]
+    pub fn events_on(&self, w: usize) -> u32 {
+        match self.events.get(w) {
+            Some(&e) => e,
+            None => u32::from(self.on_furnishing == Some(w)),
+        }
+    }
+
+    /// All deposits within the averaging window, on every surface.
+    #[must_use]
+    pub fn deposited_total(&self) -> f64 {
+        self.deposited.iter().sum::<f64>() + f64::from(u8::from(self.on_furnishing.is_some()))
     }
 }
 
