@@ -26,6 +26,8 @@ pub struct Split {
     pub floor: Part,
     pub ceiling: Part,
     pub walls: Part,
+    /// On the furnishings' faces (zero in a bare room).
+    pub furnishings: Part,
     pub airborne: Part,
     pub exhausted: Part,
     pub escaped: Part,
@@ -51,6 +53,7 @@ pub struct BinRow {
     pub floor: f64,
     pub ceiling: f64,
     pub walls: f64,
+    pub furnishings: f64,
     pub airborne: f64,
     pub exhausted: f64,
 }
@@ -68,6 +71,9 @@ pub struct DistributionReport {
     pub bins: Vec<BinRow>,
     /// How PM2.5 and PM10 are cut.
     pub pm_definition: &'static str,
+    /// Whether the room has furnishings (the tables and CSV then show their part).
+    #[serde(skip)]
+    pub furnished: bool,
 }
 
 /// How PM2.5 and PM10 are cut, for the outputs.
@@ -75,8 +81,8 @@ pub const PM_DEFINITION: &str = "PM2.5 and PM10: mass of particles of aerodynami
 correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341, ISO 7708)";
 
 impl DistributionReport {
-    /// The report of `balance` in a room of `volume` (m^3).
-    pub fn new(balance: &MassBalance, volume: f64) -> Self {
+    /// The report of `balance` in a room whose air fills `volume` (m^3), `furnished` or not.
+    pub fn new(balance: &MassBalance, volume: f64, furnished: bool) -> Self {
         // Masses in kg in the room, or as shares of the injected mass in the bins.
         let scale = if balance.absolute { volume } else { 1.0 / balance.all.injected.max(f64::MIN_POSITIVE) };
         let part = |p: Portion| Part {
@@ -89,6 +95,7 @@ impl DistributionReport {
             floor: part(s.deposited[0]),
             ceiling: part(s.deposited[1]),
             walls: part(s.deposited[2]),
+            furnishings: part(s.furnishings),
             airborne: part(s.airborne),
             exhausted: part(s.exhausted),
             escaped: part(s.escaped),
@@ -116,6 +123,7 @@ impl DistributionReport {
                     floor: share(f.deposited[0]),
                     ceiling: share(f.deposited[1]),
                     walls: share(f.deposited[2]),
+                    furnishings: share(f.furnishings),
                     airborne: share(f.airborne),
                     exhausted: share(f.exhausted),
                 }
@@ -129,6 +137,7 @@ impl DistributionReport {
             pm2_5: split(&balance.pm[0]),
             bins,
             pm_definition: PM_DEFINITION,
+            furnished,
         }
     }
 
@@ -160,24 +169,27 @@ impl DistributionReport {
             Some(q) => format!("{:.3e} +- {:.1e} ({:.1e})", p.value * k, p.error * k, q * k),
             None => format!("{:.3e} +- {:.1e} (?)", p.value * k, p.error * k),
         };
+        let furnished = |text: String| if self.furnished { format!("  {text:>28}") } else { String::new() };
         out!(
-            "{:>6}  {:>10}  {:>28}  {:>28}  {:>28}  {:>28}  {:>28}  {:>20}",
+            "{:>6}  {:>10}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
             "",
             "injected",
             "floor",
             "ceiling",
             "walls",
+            furnished("furnishings".into()),
             "airborne (end)",
             "exhausted",
             "beta of mass (1/h)"
         );
         for (name, s) in self.classes() {
             out!(
-                "{name:>6}  {:>10.3e}  {:>28}  {:>28}  {:>28}  {:>28}  {:>28}  {:>20}",
+                "{name:>6}  {:>10.3e}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
                 s.injected * k,
                 cell(&s.floor),
                 cell(&s.ceiling),
                 cell(&s.walls),
+                furnished(cell(&s.furnishings)),
                 cell(&s.airborne),
                 cell(&s.exhausted),
                 format!("{:.3} +- {:.3}", s.beta_per_hour.value, s.beta_per_hour.error)
@@ -205,7 +217,12 @@ impl DistributionReport {
 
     /// The CSV: one row per class (all, PM10, PM2.5).
     pub fn csv(&self) -> Result<(), Error> {
-        let parts = ["floor", "ceiling", "walls", "airborne", "exhausted"];
+        // A furnished room's CSV has the furnishings' columns after the walls'.
+        let mut parts = vec!["floor", "ceiling", "walls"];
+        if self.furnished {
+            parts.push("furnishings");
+        }
+        parts.extend(["airborne", "exhausted"]);
         let mut header = vec!["class".to_string(), "injected".to_string()];
         for p in parts {
             header.extend([p.to_string(), format!("{p}_error"), format!("{p}_quadrature")]);
@@ -216,7 +233,12 @@ impl DistributionReport {
             &header,
             self.classes().into_iter().map(|(name, s)| {
                 let mut row = vec![name.to_string(), s.injected.to_string()];
-                for p in [&s.floor, &s.ceiling, &s.walls, &s.airborne, &s.exhausted] {
+                let mut parts = vec![&s.floor, &s.ceiling, &s.walls];
+                if self.furnished {
+                    parts.push(&s.furnishings);
+                }
+                parts.extend([&s.airborne, &s.exhausted]);
+                for p in parts {
                     row.extend([
                         p.value.to_string(),
                         p.error.to_string(),
@@ -268,6 +290,9 @@ impl DistributionReport {
             series.push(curve("injected", per_ln_d(&|_| 1.0), 7));
             series.push(curve("floor", per_ln_d(&|b| b.floor), 0));
             series.push(curve("ceiling and walls", per_ln_d(&|b| b.ceiling + b.walls), 2));
+            if bins.iter().any(|b| b.furnishings > 0.0) {
+                series.push(curve("furnishings", per_ln_d(&|b| b.furnishings), 4));
+            }
             series.push(curve("airborne at the end", per_ln_d(&|b| b.airborne), 1));
             if bins.iter().any(|b| b.exhausted > 0.0) {
                 series.push(curve("exhausted", per_ln_d(&|b| b.exhausted), 3));
