@@ -26,14 +26,20 @@
 //! ## Turbulence
 //! The room's dispersion model ([`crate::flow`]) gives each velocity component `i` the
 //! wall-normal profile of the distance to the surfaces across its axis. With furnishings that
-//! distance is [`axis_distance`]: along axis `i`, in both directions from the particle, to the
-//! nearest surface, a room wall or a box face whose rectangle holds the particle's projection
-//! onto the face's plane. So the near-wall layer forms at furnishing faces as at walls, and
-//! the well-mixed drift stays the slope of the profile along the component's own axis, with
-//! the sign of the change of this distance along the axis. The distance jumps at the edges of
-//! a box's shadow (beside a table, the vertical distance is to the floor; above it, to the
-//! table top), where the model, like the room's own near its corners, is a construction of
-//! depo's, not a measured flow.
+//! distance is [`axis_distance`]: to the nearest surface across axis `i`, a room wall or a
+//! box face normal to `i`, the faces at their Euclidean distance from the particle. In front
+//! of a face that is the distance along `i`, so the near-wall layer forms at furnishing faces
+//! as at walls; beyond a face's edges it grows smoothly, so the profile has no jump at the
+//! edge of a box's shadow. (A first version took a face only where the particle's projection
+//! fell within it: the distance then jumped at the shadow's edge, from the face's to the
+//! floor's, and particles beside a box carried the core's fluctuation normal to its faces
+//! into their near-wall layers, right up to the face: ultrafine particles deposited onto a
+//! box's sides five times faster than onto the room's walls, a test found.) The well-mixed
+//! drift is the slope of the profile along the component's own axis, `d sigma / dd` times
+//! `dd / dx_i`, the latter `+-1` in front of a face and the cosine of the direction to the
+//! face's edge beyond it. Beside a box, within its extent along `i`, its faces normal to `i`
+//! are edge-on and the distance is to their edge. Like the room's profiles near its corners,
+//! this is a construction of depo's, not a measured flow.
 //!
 //! ## Volume
 //! Boxes may not overlap one another (they may touch) and lie strictly inside the room (a
@@ -156,31 +162,40 @@ pub fn free_volume(size: [f64; 3], boxes: &[Furnishing]) -> f64 {
     size.iter().product::<f64>() - boxes.iter().map(Furnishing::volume).sum::<f64>()
 }
 
-/// Along `axis`, the distance (m) from `x` to the nearest surface in either direction, and
-/// the sign of its change along the axis (+1 where the nearest is below `x`): the room's
-/// walls at `0` and `length`, and each box face across `axis` whose rectangle holds `x`'s
-/// projection (module docs).
+/// For the velocity component along `axis`, the distance (m) from `x` to the nearest surface
+/// across that axis, and its rate of change along the axis (the sign of the well-mixed
+/// drift): the room's walls at `0` and `length` (`+1` from the lower, `-1` from the upper),
+/// and each box's two faces across `axis`, at their Euclidean distance from `x` (module docs).
+/// In front of a face (`x`'s projection within its rectangle) that is the distance along the
+/// axis; beyond the rectangle's edges it grows smoothly, so that the profile is continuous
+/// across the edge of the box's shadow.
 #[inline]
 #[must_use]
 pub fn axis_distance(x: [f64; 3], axis: usize, length: f64, boxes: &[Furnishing]) -> (f64, f64) {
     let c = x[axis];
-    let (mut below, mut above) = (0.0, length);
+    let (mut best, mut slope) = if c <= length - c { (c, 1.0) } else { (length - c, -1.0) };
     let (b, d) = ((axis + 1) % 3, (axis + 2) % 3);
+    let outside = |k: &Furnishing, a: usize| (k.low[a] - x[a]).max(x[a] - k.high[a]).max(0.0);
     for k in boxes {
-        if x[b] >= k.low[b] && x[b] <= k.high[b] && x[d] >= k.low[d] && x[d] <= k.high[d] {
-            if k.high[axis] <= c {
-                below = f64::max(below, k.high[axis]);
-            } else if k.low[axis] >= c {
-                above = f64::min(above, k.low[axis]);
-            }
+        let lateral = outside(k, b).powi(2) + outside(k, d).powi(2);
+        // The nearer of its two faces across `axis` (the box lies between them).
+        let face = if c <= k.low[axis] {
+            k.low[axis]
+        } else if c >= k.high[axis] {
+            k.high[axis]
+        } else {
+            f64::NAN
+        };
+        let along = if face.is_nan() { 0.0 } else { c - face };
+        // Beside the box (within its extent along `axis`) the faces are edge-on: the nearer
+        // face's edge, `along` 0.
+        let distance = (along * along + lateral).sqrt();
+        if distance < best {
+            best = distance;
+            slope = if distance > 0.0 { along / distance } else { 0.0 };
         }
     }
-    let (lower, upper) = (c - below, above - c);
-    if lower <= upper {
-        (lower, 1.0)
-    } else {
-        (upper, -1.0)
-    }
+    (best, slope)
 }
 
 #[cfg(test)]
@@ -223,9 +238,20 @@ mod tests {
         // Under it: the table's bottom, 10 cm up, is nearer than the floor 60 cm down.
         let (d, sign) = axis_distance([1.5, 1.2, 0.6], 2, 2.5, &boxes);
         assert!((d - 0.1).abs() < 1e-12 && sign == -1.0);
-        // Beside it: the floor.
+        // Beside it, half a metre from its edge: the table top's edge, nearer than the floor,
+        // at its Euclidean distance; the drift's share along z is its cosine.
         let (d, sign) = axis_distance([0.5, 1.2, 0.8], 2, 2.5, &boxes);
+        let r = (0.05f64 * 0.05 + 0.5 * 0.5).sqrt();
+        assert!((d - r).abs() < 1e-12 && (sign - 0.05 / r).abs() < 1e-12, "{d} {sign}");
+        // Far beside it: the floor.
+        let (d, sign) = axis_distance([3.5, 1.2, 0.8], 2, 2.5, &boxes);
         assert!((d - 0.8).abs() < 1e-12 && sign == 1.0);
+        // Continuous across the edge of the table's shadow.
+        let inside = axis_distance([1.0 - 1e-9, 1.2, 0.8], 2, 2.5, &boxes).0;
+        assert!((inside - 0.05).abs() < 1e-8);
+        // Level with the table, beside it: its edge.
+        let (d, sign) = axis_distance([0.9, 1.2, 0.72], 2, 2.5, &boxes);
+        assert!((d - 0.1).abs() < 1e-12 && sign == 0.0);
         // Along x at the table's height: its x0 face, 10 cm on.
         let (d, sign) = axis_distance([0.9, 1.2, 0.72], 0, 4.0, &boxes);
         assert!((d - 0.1).abs() < 1e-12 && sign == -1.0);
