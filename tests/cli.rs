@@ -587,7 +587,7 @@ fn room_reports_furnishings() {
         &scene,
         format!(
             "[room]\nsize = [4.0, 3.0, 2.5]\n[particles]\ndiameters = [10e-6]\ncount = 300\ntarget_error = 0.0\n\
-             [ventilation]\nair_changes_per_hour = 1.0\n[run]\nduration = 300.0\n{furnishings}\n"
+             [ventilation]\nair_changes_per_hour = 1.0\n[run]\nduration = 300.0\nexcursions = false\n{furnishings}\n"
         ),
     )
     .unwrap();

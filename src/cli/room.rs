@@ -653,7 +653,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
 fn furnishings_table(rows: &[Row], study: &RoomStudy) {
     let scene = &study.scene;
     out!(
-        "Furnishings: {} boxes, {:.3} m^3 of air; surface-to-volume ratio {:.3} 1/m (walls and faces over the air's volume). Tracked plainly (no excursions with furnishings).",
+        "Furnishings: {} boxes, {:.3} m^3 of air; surface-to-volume ratio {:.3} 1/m (walls and faces over the air's volume); Lai & Nazaroff's beta above is the bare room's.",
         scene.furnishings.len(),
         scene.free_volume(),
         scene.surface_to_volume()

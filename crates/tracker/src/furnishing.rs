@@ -41,6 +41,14 @@
 //! are edge-on and the distance is to their edge. Like the room's profiles near its corners,
 //! this is a construction of depo's, not a measured flow.
 //!
+//! ## Excursions
+//! Near-wall excursions ([`crate::excursions`]) start where a particle's gap to the nearest
+//! surface falls below their layer and split it by that gap: with furnishings the gap is to
+//! the nearest wall or box (the Euclidean distance to the box; for the free-flight gap, the
+//! separation along each axis on which the particle lies outside the box less the stop
+//! distance of its velocity towards it). So excursions start at a box's faces as at the
+//! walls, and their weighted deposits on each face are tallied as on a wall.
+//!
 //! ## Volume
 //! Boxes may not overlap one another (they may touch) and lie strictly inside the room (a
 //! sofa on the floor stands on short legs: a gap between box and wall), so the free air volume

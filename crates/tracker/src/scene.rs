@@ -139,8 +139,7 @@ pub struct Scene {
     /// number falls as `exp(-a t)`, exactly at the ends of steps (see [`mod@crate::run`]).
     pub air_exchange: f64,
     /// Solid boxes inside a room, each face a surface of its own (see [`crate::furnishing`]);
-    /// none by default. They may not overlap, must lie strictly inside the room, and rule out
-    /// [`Scene::excursions`].
+    /// none by default. They may not overlap and must lie strictly inside the room.
     pub furnishings: Vec<Furnishing>,
 }
 
@@ -348,13 +347,6 @@ impl Scene {
         let size = self.geometry.size();
         if !matches!(self.geometry, Geometry::Room { .. }) {
             return Err(SceneError::new("furnishings", self.furnishings.len() as f64, "need a room"));
-        }
-        if self.excursions.is_some() {
-            return Err(SceneError::new(
-                "excursions",
-                self.furnishings.len() as f64,
-                "are not available with furnishings (track plainly)",
-            ));
         }
         for (k, f) in self.furnishings.iter().enumerate() {
             let field = |key: &str| format!("furnishings[{k}].{key}");

@@ -14,10 +14,8 @@
 //! steady deposition rate that does not wait for the Brownian sublayer to fill, and in the
 //! room at 0.1 um six to eight times as efficient as plain tracking (`1 / (error^2 time)`;
 //! see `docs/performance-log.md`). `excursions: false` gives plain tracking, for comparison.
-//! A furnished room ([`Scene::furnishings`]) is always tracked plainly: excursions split
-//! particles by their gap to the room's walls alone and are not run with furnishings (the
-//! scene refuses them), so the study falls back to plain tracking there and says so in
-//! [`RoomPoint::excursions`].
+//! In a furnished room ([`Scene::furnishings`]) the excursions start at the furnishings'
+//! near-wall layers as at the walls' (their gap is to the nearest wall or box).
 
 use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
@@ -264,7 +262,7 @@ impl RoomStudy {
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let mut scene = self.scene.clone();
             scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
-            if self.excursions && scene.furnishings.is_empty() {
+            if self.excursions {
                 // Down to 0.05 wall units (75 um at u* = 1 cm/s), inside the Brownian sublayer
                 // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
                 // pilot has 500 particles, or a quarter of a smaller first run.
