@@ -174,7 +174,7 @@ pub struct Balance {
     pub injected: usize,
     /// Still airborne.
     pub airborne: usize,
-    /// Deposited, per wall.
+    /// Deposited, per surface (walls, then furnishing faces; see [`Run::walls`]).
     pub deposited: Vec<usize>,
     /// Escaped.
     pub escaped: usize,
@@ -184,7 +184,7 @@ pub struct Balance {
     pub injected_mass: f64,
     /// Airborne mass, kg.
     pub airborne_mass: f64,
-    /// Deposited mass per wall, kg.
+    /// Deposited mass per surface, kg.
     pub deposited_mass: Vec<f64>,
     /// Escaped mass, kg.
     pub escaped_mass: f64,

@@ -92,7 +92,8 @@ const BISECTIONS: usize = 48;
 pub enum Fate {
     /// Still in the air.
     Airborne,
-    /// Deposited on the wall with this id.
+    /// Deposited on the surface with this id: a wall, or a furnishing's face
+    /// ([`Scene::surfaces`]).
     Deposited(usize),
     /// Lost to the statistics: a non-finite state or a contact the wall law flagged invalid.
     Escaped,
