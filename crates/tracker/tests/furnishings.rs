@@ -254,3 +254,33 @@ fn excursions_agree_with_plain_tracking_at_a_box() {
     let (a, b) = (plain.loss_rate(), split.loss_rate());
     assert!(z(a, b) < 3.0, "beta: plain {a:?}, excursions {b:?}");
 }
+
+/// A furnished, ventilated room study with excursions: per furnishing its faces' figures, the
+/// release's exact balance with its part on the furnishings, and the surface-to-volume ratio.
+#[test]
+fn a_furnished_room_study_reports_each_furnishing() {
+    let mut study = depo_tracker::studies::RoomStudy::default();
+    study.scene.geometry = Geometry::Room { size: [1.5, 1.0, 1.0] };
+    study.scene.duration = 120.0;
+    study.scene.air_exchange = 2.0 / 3600.0;
+    study.scene.furnishings = vec![Furnishing::new([0.2, 0.2, 0.4], [0.8, 0.8, 0.45]).named("table")];
+    study.diameters = vec![5e-6];
+    study.count = 300;
+    study.target_error = None;
+    let points = study.run(|_| {}).unwrap();
+    let p = &points[0];
+    assert!(p.excursions.is_some(), "counted by excursions");
+    assert_eq!(p.furnishings.len(), 1);
+    let table = &p.furnishings[0];
+    assert_eq!(table.name, "table");
+    assert!((table.area - 2.0 * (0.36 + 0.03 + 0.03)).abs() < 1e-12);
+    assert!(table.faces[1].events > 0 && table.faces[1].value > 0.0, "the top collects: {table:?}");
+    assert_eq!(table.deposited.0, table.face_deposited.iter().map(|f| f.0).sum::<usize>());
+    let on_room: usize = p.deposited.iter().map(|d| d.0).sum();
+    assert_eq!(on_room + table.deposited.0 + p.exhausted.0 + p.airborne.0, p.released.0);
+    let volume = 1.5 - 0.6 * 0.6 * 0.05;
+    let area = 2.0 * (1.5 + 1.5 + 1.0) + table.area;
+    assert!((p.surface_to_volume - area / volume).abs() < 1e-9);
+    assert_eq!(p.maps.len(), 12);
+    assert_eq!(p.maps[7].iter().sum::<u32>() as usize, table.face_deposited[1].0);
+}
