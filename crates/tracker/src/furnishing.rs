@@ -238,7 +238,7 @@ mod tests {
     }
 
     #[test]
-    fn distance_is_to_the_nearest_surface_in_the_line_of_the_axis() {
+    fn distance_is_to_the_nearest_surface_across_the_axis() {
         let boxes = [table()];
         // Above the table: the table top, 5 cm down, is nearer than the ceiling.
         let (d, sign) = axis_distance([1.5, 1.2, 0.8], 2, 2.5, &boxes);
