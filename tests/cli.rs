@@ -602,6 +602,106 @@ fn measured_constants_stand_in_for_a_preset() {
     assert_eq!(preset, constants);
 }
 
+/// A furnished room from a scene file: per-furnishing rows in every format, its
+/// surface-to-volume ratio, an exact release balance with the furnishings' part, and the
+/// example's commented furnishings parse once uncommented.
+#[test]
+fn room_reports_furnishings() {
+    let dir = scratch("furnished");
+    let scene = dir.join("room.toml");
+    let example = std::fs::read_to_string("examples/room.toml").unwrap();
+    let furnishings = &example[example.find("# [[furnishings]]").unwrap()..];
+    let furnishings: String =
+        furnishings.lines().map(|l| l.strip_prefix("# ").unwrap_or("")).collect::<Vec<_>>().join("\n");
+    std::fs::write(
+        &scene,
+        format!(
+            "[room]\nsize = [4.0, 3.0, 2.5]\n[particles]\ndiameters = [10e-6]\ncount = 300\ntarget_error = 0.0\n\
+             [ventilation]\nair_changes_per_hour = 1.0\n[run]\nduration = 300.0\nexcursions = false\n{furnishings}\n"
+        ),
+    )
+    .unwrap();
+    let path = scene.to_str().unwrap();
+    let json = ok_json(&["room", path, "--format", "json", "--no-plot"]);
+    let volume = 4.0 * 3.0 * 2.5 - 1.2 * 0.8 * 0.05 - 0.4 * 2.6 * 1.7;
+    assert!((json["air_volume_m3"].as_f64().unwrap() - volume).abs() < 1e-9, "{}", json["air_volume_m3"]);
+    let area = 2.0 * (12.0 + 10.0 + 7.5) + 2.0 * (0.96 + 0.06 + 0.04) + 2.0 * (1.04 + 0.68 + 4.42);
+    assert!((json["surface_to_volume_per_m"].as_f64().unwrap() - area / volume).abs() < 1e-9);
+    let size = &json["sizes"][0];
+    assert_eq!(size["method"], "plain");
+    let rows = size["furnishings"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0]["name"], "table");
+    assert_eq!(rows[1]["faces"][1]["face"], "top");
+    // 10 um particles settle onto the table top.
+    assert!(rows[0]["faces"][1]["deposited"].as_u64().unwrap() > 0, "{}", rows[0]);
+    assert!(rows[0]["top"]["value"].as_f64().unwrap() > 0.0);
+    let release = &size["release"];
+    let count = |k: &str| release[k]["count"].as_u64().unwrap();
+    let on_boxes: u64 = rows.iter().map(|r| r["deposited"]["count"].as_u64().unwrap()).sum();
+    assert_eq!(count("furnishings"), on_boxes);
+    assert_eq!(
+        count("floor")
+            + count("ceiling")
+            + count("walls")
+            + count("furnishings")
+            + count("exhausted")
+            + count("airborne"),
+        release["particles"].as_u64().unwrap()
+    );
+    let csv = depo(&["room", path, "--format", "csv", "--no-plot"]);
+    assert!(csv.status.success());
+    let csv = String::from_utf8(csv.stdout).unwrap();
+    let header = csv.lines().next().unwrap();
+    for column in ["table_vd", "table_top_vd", "shelf_share", "furnishings_share", "surface_to_volume_per_m"] {
+        assert!(header.split(',').any(|c| c == column), "{column} in {header}");
+    }
+    let plots = dir.join("plots");
+    let table = depo(&["room", path, "--plot", plots.to_str().unwrap()]);
+    let table = String::from_utf8(table.stdout).unwrap();
+    // Each face has its deposition map over the box's extent.
+    let map = std::fs::read_to_string(plots.join("room-map-table.top-10um.csv")).unwrap();
+    assert!(map.contains("furnishing face table.top (z = 0.75 m)"), "{map}");
+    assert!(map.contains("rows: x from 1 to 2.2 m in 20 cells; columns: y from 1 to 1.8 m in 20 cells"), "{map}");
+    let mapped: u64 =
+        map.lines().filter(|l| !l.starts_with('#')).flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum();
+    assert_eq!(mapped, rows[0]["faces"][1]["deposited"].as_u64().unwrap());
+    assert!(table.contains("Furnishings: 2 boxes") && table.contains("surface-to-volume ratio"), "{table}");
+    assert!(table.lines().any(|l| l.contains("shelf")), "{table}");
+}
+
+/// Furnishings in a scene file are checked with the file, line and key.
+#[test]
+fn furnishing_errors_name_the_file_line_and_key() {
+    let dir = scratch("furnishing-errors");
+    let write = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let outside = write(
+        "outside.toml",
+        "[room]\nsize = [2.0, 2.0, 2.0]\n\n[[furnishings]]\nlow = [0.5, 0.5, 0.0]\nhigh = [1.0, 1.0, 1.0]\n",
+    );
+    user_error(&["room", outside.to_str().unwrap(), "--no-plot"], "line 5: `furnishings[0].low` z = 0");
+    let upside = write("upside.toml", "[[furnishings]]\nlow = [0.5, 0.5, 0.5]\nhigh = [1.0, 0.4, 1.0]\n");
+    user_error(&["room", upside.to_str().unwrap(), "--no-plot"], "line 3: `furnishings[0].high` y = 0.4");
+    let overlap = write(
+        "overlap.toml",
+        "[[furnishings]]\nlow = [0.5, 0.5, 0.5]\nhigh = [1.0, 1.0, 1.0]\n[[furnishings]]\nlow = [0.9, 0.9, 0.9]\nhigh = [1.2, 1.2, 1.2]\n",
+    );
+    user_error(&["room", overlap.to_str().unwrap(), "--no-plot"], "`furnishings[1]` overlaps `furnishings[0]`");
+    let preset = write(
+        "preset.toml",
+        "[[furnishings]]\nlow = [0.5, 0.5, 0.5]\nhigh = [1.0, 1.0, 1.0]\ntop = { preset = \"nope\" }\n",
+    );
+    user_error(&["room", preset.to_str().unwrap(), "--no-plot"], "`furnishings[0].top.preset`");
+    let unknown = write("unknown.toml", "[[furnishings]]\nlow = [0.5, 0.5, 0.5]\nhigh = [1.0, 1.0, 1.0]\nside = {}\n");
+    user_error(&["room", unknown.to_str().unwrap(), "--no-plot"], "line 4: unknown field `side`");
+    let missing = write("missing.toml", "[[furnishings]]\nlow = [0.5, 0.5, 0.5]\n");
+    user_error(&["room", missing.to_str().unwrap(), "--no-plot"], "missing field `high`");
+}
+
 #[test]
 fn example_scene_files_parse() {
     // Parsing only: zero-duration runs of the shipped examples, so every documented key is known.

@@ -7,6 +7,7 @@ use clap::Args as ClapArgs;
 use depo::tracker::correlations::LaiNazaroff;
 use depo::tracker::decay::MIN_AIRBORNE;
 use depo::tracker::distribution::{first_seen, DistributionStudy};
+use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::studies::MAP_BINS;
 use depo::tracker::studies::{RoomPoint, RoomStudy};
 use depo::tracker::{binomial_error, DecayCurve, Estimate, Flow, Geometry, WallTally};
@@ -157,8 +158,38 @@ struct Row {
     /// The surfaces (floor, ceiling, walls) whose figure is unresolved: no deposit event, or
     /// a relative standard error above 5 % where Lai & Nazaroff give at least 1e-7 m/s.
     unresolved: Vec<&'static str>,
+    /// Per furnishing: deposition velocities onto its faces and what it collected.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    furnishings: Vec<FurnishingRow>,
     #[serde(skip)]
     maps: Vec<Vec<u32>>,
+}
+
+/// One furnishing in a size's row.
+#[derive(Serialize)]
+struct FurnishingRow {
+    name: String,
+    area_m2: f64,
+    /// Deposition velocity onto all its faces together, m/s.
+    all: Measured,
+    top: Measured,
+    bottom: Measured,
+    /// Its four vertical faces together.
+    sides: Measured,
+    /// Per face, in face order (bottom, top, x0, x1, y0, y1): name, deposition velocity, and
+    /// deposited count and mass.
+    faces: Vec<FaceRow>,
+    /// What it collected over the whole run, as a share of the release.
+    deposited: Share,
+}
+
+/// One face of a furnishing.
+#[derive(Serialize)]
+struct FaceRow {
+    face: &'static str,
+    velocity: Measured,
+    deposited: usize,
+    deposited_kg: f64,
 }
 
 /// Deposited count and mass (kg) per orientation over the whole run.
@@ -211,6 +242,9 @@ struct Release {
     floor: Share,
     ceiling: Share,
     walls: Share,
+    /// On the furnishings' faces (present in a furnished room).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    furnishings: Option<Share>,
     exhausted: Share,
     airborne: Share,
 }
@@ -272,6 +306,10 @@ struct Report<'a> {
     target_error: Option<f64>,
     max_particles_per_size: usize,
     duration_s: f64,
+    /// The air's volume (the room's less the furnishings'), m^3.
+    air_volume_m3: f64,
+    /// All surfaces' area (walls and furnishing faces) over the air's volume, 1/m.
+    surface_to_volume_per_m: f64,
     sizes: &'a [Row],
     /// With a size distribution: where its mass went.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -318,6 +356,10 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
                 floor: Share::of(p.deposited[0], released, Some(floor)),
                 ceiling: Share::of(p.deposited[1], released, Some(floor)),
                 walls: Share::of(p.deposited[2], released, Some(walls)),
+                furnishings: (!p.furnishings.is_empty()).then(|| {
+                    let on = p.furnishings.iter().fold((0, 0.0), |(n, m), f| (n + f.deposited.0, m + f.deposited.1));
+                    Share::of(on, released, Some(p.furnishings.iter().map(|f| f.area).sum()))
+                }),
                 exhausted: Share::of((b.exhausted, b.exhausted_mass), released, None),
                 airborne: Share::of((b.airborne, b.airborne_mass), released, None),
             }
@@ -343,6 +385,27 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
             walls_kg: p.deposited[2].1,
         },
         unresolved,
+        furnishings: p
+            .furnishings
+            .iter()
+            .map(|f| FurnishingRow {
+                name: f.name.clone(),
+                area_m2: f.area,
+                all: f.all.into(),
+                top: f.faces[1].into(),
+                bottom: f.faces[0].into(),
+                sides: f.sides.into(),
+                faces: (0..6)
+                    .map(|k| FaceRow {
+                        face: FACE_NAMES[k],
+                        velocity: f.faces[k].into(),
+                        deposited: f.face_deposited[k].0,
+                        deposited_kg: f.face_deposited[k].1,
+                    })
+                    .collect(),
+                deposited: Share::of(f.deposited, (p.balance.injected, p.balance.injected_mass), Some(f.area)),
+            })
+            .collect(),
         maps: p.maps.clone(),
     }
 }
@@ -371,7 +434,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
     if distribution.is_some() {
         study.diameters = points.iter().map(|p| p.diameter).collect();
     }
-    let distribution = balance.map(|b| DistributionReport::new(&b, study.scene.geometry.volume()));
+    let furnished = !study.scene.furnishings.is_empty();
+    let distribution = balance.map(|b| DistributionReport::new(&b, study.scene.free_volume(), furnished));
     let seconds = start.elapsed().as_secs_f64();
     let Geometry::Room { size } = study.scene.geometry else { unreachable!("a room study has a room") };
     let u_star = match study.scene.flow {
@@ -394,6 +458,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 target_error: study.target_error,
                 max_particles_per_size: study.max_count,
                 duration_s: study.scene.duration,
+                air_volume_m3: study.scene.free_volume(),
+                surface_to_volume_per_m: study.scene.surface_to_volume(),
                 sizes: &rows,
                 distribution: distribution.as_ref(),
             };
@@ -433,6 +499,20 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "exhausted_share",
                 "airborne_share",
             ]);
+            // A furnished room adds, per furnishing, its deposition velocity onto all its faces,
+            // onto its top, and its share of the release; and the surface-to-volume ratio.
+            let names: Vec<String> = study.scene.furnishings.iter().enumerate().map(|(k, f)| f.label(k)).collect();
+            let furnishing_columns: Vec<String> = names
+                .iter()
+                .flat_map(|n| {
+                    ["vd", "vd_error", "deposits", "top_vd", "top_vd_error", "share"].map(|c| format!("{n}_{c}"))
+                })
+                .collect();
+            header.extend(furnishing_columns.iter().map(String::as_str));
+            if furnished {
+                header.extend(["furnishings_share", "surface_to_volume_per_m"]);
+            }
+            let surface_to_volume = study.scene.surface_to_volume();
             print_csv(
                 &header,
                 rows.iter().map(|r| {
@@ -468,6 +548,19 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                         [&release.floor, &release.ceiling, &release.walls, &release.exhausted, &release.airborne]
                             .map(|s| x(s.share)),
                     );
+                    for f in &r.furnishings {
+                        row.extend([
+                            x(f.all.value),
+                            x(f.all.error),
+                            n(&f.all),
+                            x(f.top.value),
+                            x(f.top.error),
+                            x(f.deposited.share),
+                        ]);
+                    }
+                    if let Some(share) = &release.furnishings {
+                        row.extend([x(share.share), x(surface_to_volume)]);
+                    }
                     row
                 }),
             )?;
@@ -541,6 +634,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                         .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
                 );
             }
+            if furnished {
+                furnishings_table(&rows, &study);
+            }
             out!("{ERROR_NOTE}");
             if rows.iter().any(|r| !r.unresolved.is_empty()) {
                 out!(
@@ -590,6 +686,45 @@ fn density_label(rows: &[Row], density: f64, sep: &str, unit: &str) -> String {
     }
 }
 
+/// The furnishings' table under the per-size one: per size and furnishing, the deposition
+/// velocity (m/s) onto all its faces, its top, its bottom and its sides, and its share of the
+/// release.
+fn furnishings_table(rows: &[Row], study: &RoomStudy) {
+    let scene = &study.scene;
+    out!(
+        "Furnishings: {} boxes, {:.3} m^3 of air; surface-to-volume ratio {:.3} 1/m (walls and faces over the air's volume); Lai & Nazaroff's beta above is the bare room's.",
+        scene.furnishings.len(),
+        scene.free_volume(),
+        scene.surface_to_volume()
+    );
+    out!(
+        "{:>8}  {:>12} {:>8}  {:>27}  {:>27}  {:>27}  {:>27}  {:>16}",
+        "d (um)",
+        "furnishing",
+        "area m^2",
+        "all faces",
+        "top",
+        "bottom",
+        "sides",
+        "share of release"
+    );
+    for r in rows {
+        for f in &r.furnishings {
+            out!(
+                "{:>8.3}  {:>12} {:>8.3}  {:>27}  {:>27}  {:>27}  {:>27}  {:>16}",
+                r.diameter_um,
+                f.name,
+                f.area_m2,
+                f.all.cell(),
+                f.top.cell(),
+                f.bottom.cell(),
+                f.sides.cell(),
+                format!("{:.4} +- {:.4}", f.deposited.share, f.deposited.share_error)
+            );
+        }
+    }
+}
+
 /// A rate per hour with its standard error: fixed-point from 0.1/h, else in e-notation.
 fn rate_cell(m: &Measured) -> String {
     if m.value.abs() >= 0.1 {
@@ -626,7 +761,7 @@ fn decay_table(rows: &[Row], ach: f64) {
          released."
     );
     out!(
-        "{:>8}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7} {:>9} {:>8}  {:>20}",
+        "{:>8}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20}",
         "d (um)",
         "beta fitted (1/h)",
         "z",
@@ -634,6 +769,12 @@ fn decay_table(rows: &[Row], ach: f64) {
         "floor",
         "ceiling",
         "walls",
+        // A furnished room's release has a part on the furnishings.
+        if rows.iter().any(|r| r.release.furnishings.is_some()) {
+            format!(" {:>11}", "furnishings")
+        } else {
+            String::new()
+        },
         "exhausted",
         "airborne",
         "floor (ug/m2 per mg)"
@@ -651,7 +792,7 @@ fn decay_table(rows: &[Row], ach: f64) {
         let release = &r.release;
         let pct = |s: &Share| format!("{:.1}", 100.0 * s.share);
         out!(
-            "{:>8.3}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7} {:>9} {:>8}  {:>20.3e}",
+            "{:>8.3}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20.3e}",
             r.diameter_um,
             fitted,
             z,
@@ -659,6 +800,7 @@ fn decay_table(rows: &[Row], ach: f64) {
             pct(&release.floor),
             pct(&release.ceiling),
             pct(&release.walls),
+            release.furnishings.as_ref().map_or(String::new(), |s| format!(" {:>11}", pct(s))),
             pct(&release.exhausted),
             pct(&release.airborne),
             // kg/m^2 per kg released, for 1 mg released, in ug/m^2.
@@ -806,33 +948,41 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
     plot::semilog_y(&decay, "Airborne share after a release", "time (min)", "N(t) / N(0)", &series)?;
     let curves = dir.join("room-decay.csv");
     std::fs::write(&curves, text).map_err(|e| format!("cannot write {}: {e}", curves.display()))?;
-    // Deposition maps, one CSV per wall and size, under a header of `#` lines: rows and
-    // columns along the wall's two in-plane axes in the order x, y, z.
-    let walls = study.scene.geometry.walls();
+    // Deposition maps, one CSV per surface (walls, then furnishing faces, named as
+    // `table.top`) and size, under a header of `#` lines: rows and columns along the
+    // surface's two in-plane axes in the order x, y, z, over the room or the furnishing.
+    let surfaces = study.scene.surfaces();
     let axis = ["x", "y", "z"];
     for r in rows {
         let label = (r.diameter_um * 1e4).round() / 1e4;
-        for (wall, map) in walls.iter().zip(&r.maps) {
-            let name = wall.name(&study.scene.geometry);
+        for (wall, map) in surfaces.iter().zip(&r.maps) {
+            let name = study.scene.surface_name(wall.id);
+            let (low, high) = match wall.furnishing {
+                Some(k) => (study.scene.furnishings[k].low, study.scene.furnishings[k].high),
+                None => ([0.0; 3], size),
+            };
             let (a, b) = match wall.axis {
                 0 => (1, 2),
                 1 => (0, 2),
                 _ => (0, 1),
             };
-            let cell = [size[a] / MAP_BINS[0] as f64, size[b] / MAP_BINS[1] as f64];
+            let cell = [(high[a] - low[a]) / MAP_BINS[0] as f64, (high[b] - low[b]) / MAP_BINS[1] as f64];
             let mut text = format!(
-                "# depo room deposition map: wall {name} ({} = {} m), particle diameter {label} um, density {} kg/m^3; \
+                "# depo room deposition map: {} {name} ({} = {} m), particle diameter {label} um, density {} kg/m^3; \
                  deposits of the tracked particles over the whole run, per cell\n\
-                 # rows: {} from 0 to {} m in {} cells; columns: {} from 0 to {} m in {} cells\n\
+                 # rows: {} from {} to {} m in {} cells; columns: {} from {} to {} m in {} cells\n\
                  # cell size {} m ({}) x {} m ({})\n",
+                if wall.furnishing.is_some() { "furnishing face" } else { "wall" },
                 axis[wall.axis],
                 wall.position,
                 r.density,
                 axis[a],
-                size[a],
+                low[a],
+                high[a],
                 MAP_BINS[0],
                 axis[b],
-                size[b],
+                low[b],
+                high[b],
                 MAP_BINS[1],
                 cell[0],
                 axis[a],
@@ -851,7 +1001,7 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
         }
     }
     eprintln!(
-        "figures: {}, {} and {}; decay curves: {}; deposition maps ({}x{} cells per wall): {}/room-map-WALL-SIZEum{}.csv",
+        "figures: {}, {} and {}; decay curves: {}; deposition maps ({}x{} cells per surface): {}/room-map-SURFACE-SIZEum{}.csv",
         deposition.display(),
         beta.display(),
         decay.display(),

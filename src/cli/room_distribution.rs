@@ -29,6 +29,8 @@ pub struct Split {
     pub floor: Part,
     pub ceiling: Part,
     pub walls: Part,
+    /// On the furnishings' faces (zero in a bare room).
+    pub furnishings: Part,
     pub airborne: Part,
     pub exhausted: Part,
     pub escaped: Part,
@@ -56,6 +58,7 @@ pub struct BinRow {
     pub floor: f64,
     pub ceiling: f64,
     pub walls: f64,
+    pub furnishings: f64,
     pub airborne: f64,
     pub exhausted: f64,
 }
@@ -74,6 +77,9 @@ pub struct DistributionReport {
     pub bins: Vec<BinRow>,
     /// How PM2.5 and PM10 are cut.
     pub pm_definition: &'static str,
+    /// Whether the room has furnishings (the tables and CSV then show their part).
+    #[serde(skip)]
+    pub furnished: bool,
 }
 
 /// What the masses are in.
@@ -92,8 +98,8 @@ pub const PM_DEFINITION: &str = "PM2.5 and PM10: mass of particles of aerodynami
 correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341:2014, ISO 7708)";
 
 impl DistributionReport {
-    /// The report of `balance` in a room of `volume` (m^3).
-    pub fn new(balance: &MassBalance, volume: f64) -> Self {
+    /// The report of `balance` in a room whose air fills `volume` (m^3), `furnished` or not.
+    pub fn new(balance: &MassBalance, volume: f64, furnished: bool) -> Self {
         // Masses in kg in the room, or as shares of the distribution's mass: in the bins and
         // beyond them (shares of the bins' mass alone would make the mass beyond them any
         // multiple of it).
@@ -110,6 +116,7 @@ impl DistributionReport {
             floor: part(s.deposited[0]),
             ceiling: part(s.deposited[1]),
             walls: part(s.deposited[2]),
+            furnishings: part(s.furnishings),
             airborne: part(s.airborne),
             exhausted: part(s.exhausted),
             escaped: part(s.escaped),
@@ -137,6 +144,7 @@ impl DistributionReport {
                     floor: share(f.deposited[0]),
                     ceiling: share(f.deposited[1]),
                     walls: share(f.deposited[2]),
+                    furnishings: share(f.furnishings),
                     airborne: share(f.airborne),
                     exhausted: share(f.exhausted),
                 }
@@ -150,6 +158,7 @@ impl DistributionReport {
             pm2_5: split(&balance.pm[0]),
             bins,
             pm_definition: PM_DEFINITION,
+            furnished,
         }
     }
 
@@ -174,24 +183,27 @@ impl DistributionReport {
             Some(q) => format!("{:.3e} +- {:.1e} ({:.1e})", p.value * k, p.error * k, q * k),
             None => format!("{:.3e} +- {:.1e} (?)", p.value * k, p.error * k),
         };
+        let furnished = |text: String| if self.furnished { format!("  {text:>28}") } else { String::new() };
         out!(
-            "{:>6}  {:>10}  {:>28}  {:>28}  {:>28}  {:>28}  {:>28}  {:>20}",
+            "{:>6}  {:>10}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
             "",
             "injected",
             "floor",
             "ceiling",
             "walls",
+            furnished("furnishings".into()),
             "airborne (end)",
             "exhausted",
             "beta of mass (1/h)"
         );
         for (name, s) in self.classes() {
             out!(
-                "{name:>6}  {:>10.3e}  {:>28}  {:>28}  {:>28}  {:>28}  {:>28}  {:>20}",
+                "{name:>6}  {:>10.3e}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
                 s.injected * k,
                 cell(&s.floor),
                 cell(&s.ceiling),
                 cell(&s.walls),
+                furnished(cell(&s.furnishings)),
                 cell(&s.airborne),
                 cell(&s.exhausted),
                 s.beta_per_hour.as_ref().map_or("none measured".to_string(), beta_cell)
@@ -237,7 +249,12 @@ impl DistributionReport {
 
     /// The CSV: one row per class (all, PM10, PM2.5).
     pub fn csv(&self) -> Result<(), Error> {
-        let parts = ["floor", "ceiling", "walls", "airborne", "exhausted"];
+        // A furnished room's CSV has the furnishings' columns after the walls'.
+        let mut parts = vec!["floor", "ceiling", "walls"];
+        if self.furnished {
+            parts.push("furnishings");
+        }
+        parts.extend(["airborne", "exhausted"]);
         let mut header = vec!["class".to_string(), "injected".to_string()];
         for p in parts {
             header.extend([
@@ -253,7 +270,12 @@ impl DistributionReport {
             &header,
             self.classes().into_iter().map(|(name, s)| {
                 let mut row = vec![name.to_string(), s.injected.to_string()];
-                for p in [&s.floor, &s.ceiling, &s.walls, &s.airborne, &s.exhausted] {
+                let mut parts = vec![&s.floor, &s.ceiling, &s.walls];
+                if self.furnished {
+                    parts.push(&s.furnishings);
+                }
+                parts.extend([&s.airborne, &s.exhausted]);
+                for p in parts {
                     row.extend([
                         p.value.to_string(),
                         p.error.to_string(),
@@ -302,6 +324,9 @@ impl DistributionReport {
             series.push(curve("injected", per_ln_d(&|_| 1.0), 7));
             series.push(curve("floor", per_ln_d(&|b| b.floor), 0));
             series.push(curve("ceiling and walls", per_ln_d(&|b| b.ceiling + b.walls), 2));
+            if bins.iter().any(|b| b.furnishings > 0.0) {
+                series.push(curve("furnishings", per_ln_d(&|b| b.furnishings), 4));
+            }
             series.push(curve("airborne at the end", per_ln_d(&|b| b.airborne), 1));
             if bins.iter().any(|b| b.exhausted > 0.0) {
                 series.push(curve("exhausted", per_ln_d(&|b| b.exhausted), 3));

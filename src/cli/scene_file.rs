@@ -6,8 +6,9 @@ use std::path::Path;
 
 use depo::tracker::air::STANDARD_GRAVITY;
 use depo::tracker::distribution::{Amount, Distribution, Median, Mode, Quantity, SizeClass, DEFAULT_BINS};
+use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
-use depo::tracker::{Air, Drag, Flow, Geometry, Scene, WallBehaviour};
+use depo::tracker::{Air, Drag, Flow, Furnishing, Geometry, Scene, WallBehaviour};
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
 use toml::Spanned;
@@ -129,9 +130,28 @@ struct VentilationFile {
     penetration: Option<f64>,
 }
 
+/// One `[[furnishings]]` entry: a box and its faces' behaviour (the keys of a `[walls.*]`
+/// table, for all faces or per face).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FurnishingFile {
+    name: Option<String>,
+    low: Spanned<[f64; 3]>,
+    high: Spanned<[f64; 3]>,
+    all: Option<WallFile>,
+    bottom: Option<WallFile>,
+    top: Option<WallFile>,
+    x0: Option<WallFile>,
+    x1: Option<WallFile>,
+    y0: Option<WallFile>,
+    y1: Option<WallFile>,
+}
+
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct RoomFile {
+    #[serde(default)]
+    furnishings: Vec<Spanned<FurnishingFile>>,
     #[serde(default)]
     room: RoomSection,
     #[serde(default)]
@@ -228,8 +248,10 @@ fn apply_air(scene: &mut Scene, air: &AirFile) {
     set(&mut scene.air.viscosity, air.viscosity);
 }
 
-fn wall_behaviour(name: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
-    let key = |k: &str| format!("walls.{name}.{k}");
+/// The behaviour `file` gives a surface whose keys start `prefix` (`walls.floor`,
+/// `furnishings[0].top`).
+fn wall_behaviour(prefix: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
+    let key = |k: &str| format!("{prefix}.{k}");
     let constants = [file.k, file.kappa, file.vc, file.p, file.q];
     let has_constants = constants.iter().any(Option::is_some);
     let default = if file.preset.is_some() || has_constants { "law" } else { "sink" };
@@ -239,9 +261,7 @@ fn wall_behaviour(name: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
         "law" => {
             let mut law = match (file.preset.as_deref(), has_constants) {
                 (Some(_), true) => {
-                    return Err(format!(
-                        "`walls.{name}`: give a `preset` or the constants `k`, `kappa`, `vc`, not both"
-                    ))
+                    return Err(format!("`{prefix}`: give a `preset` or the constants `k`, `kappa`, `vc`, not both"))
                 }
                 (Some(id), false) => WallLaw::preset(id).map_err(|e| format!("`{}`: {e}", key("preset")))?,
                 (None, true) => {
@@ -250,7 +270,7 @@ fn wall_behaviour(name: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
                     };
                     let (k, kappa, vc) = (need(file.k, "k")?, need(file.kappa, "kappa")?, need(file.vc, "vc")?);
                     let params = LawParams::symmetric(k, kappa, vc, file.p.unwrap_or(1.0), file.q.unwrap_or(1.0));
-                    WallLaw::new(params).map_err(|e| format!("`walls.{name}`: {e}"))?
+                    WallLaw::new(params).map_err(|e| format!("`{prefix}`: {e}"))?
                 }
                 (None, false) => {
                     return Err(format!(
@@ -268,7 +288,7 @@ fn wall_behaviour(name: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
                     let d_ref = file
                         .reference_diameter
                         .ok_or_else(|| format!("`{}` is needed with a size exponent", key("reference_diameter")))?;
-                    Some(SizeDependence::new(d_ref, alpha).map_err(|e| format!("`walls.{name}`: {e}"))?)
+                    Some(SizeDependence::new(d_ref, alpha).map_err(|e| format!("`{prefix}`: {e}"))?)
                 }
             };
             Ok(WallBehaviour::Law { law, size })
@@ -279,7 +299,7 @@ fn wall_behaviour(name: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
 
 fn apply_walls(scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
     if let Some(all) = &walls.all {
-        let behaviour = wall_behaviour("all", all)?;
+        let behaviour = wall_behaviour("walls.all", all)?;
         scene.walls.iter_mut().for_each(|w| *w = behaviour);
     }
     let geometry = scene.geometry;
@@ -296,7 +316,7 @@ fn apply_walls(scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
             _ => &walls.upper,
         };
         if let Some(file) = file {
-            scene.walls[wall.id] = wall_behaviour(name, file)?;
+            scene.walls[wall.id] = wall_behaviour(&format!("walls.{name}"), file)?;
         }
     }
     let room_only = [&walls.floor, &walls.ceiling, &walls.x0, &walls.x1, &walls.y0, &walls.y1];
@@ -309,6 +329,61 @@ fn apply_walls(scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
         return Err("`walls`: a room has floor, ceiling, x0, x1, y0, y1; a channel has lower and upper".into());
     }
     Ok(())
+}
+
+/// The `[[furnishings]]` of a room of `size` (m), checked: each box strictly inside the room
+/// and above its `low` corner, none overlapping another; errors name the file, the line and
+/// the key.
+fn furnishings(
+    path: &Path,
+    text: &str,
+    entries: &[Spanned<FurnishingFile>],
+    size: [f64; 3],
+) -> Result<Vec<Furnishing>, Error> {
+    let at = |offset: usize, message: String| format!("{} line {}: {message}", path.display(), line_of(text, offset));
+    let mut boxes: Vec<Furnishing> = Vec::new();
+    for (k, entry) in entries.iter().enumerate() {
+        let f = entry.get_ref();
+        let (low, high) = (*f.low.get_ref(), *f.high.get_ref());
+        for a in 0..3 {
+            let axis = ["x", "y", "z"][a];
+            if !(low[a].is_finite() && low[a] > 0.0 && low[a] < size[a]) {
+                return Err(at(
+                    f.low.span().start,
+                    format!(
+                        "`furnishings[{k}].low` {axis} = {} must lie strictly inside the room (0 to {} m)",
+                        low[a], size[a]
+                    ),
+                ));
+            }
+            if !(high[a].is_finite() && high[a] > low[a] && high[a] < size[a]) {
+                return Err(at(
+                    f.high.span().start,
+                    format!(
+                        "`furnishings[{k}].high` {axis} = {} must lie above `low` and strictly inside the room (below {} m)",
+                        high[a], size[a]
+                    ),
+                ));
+            }
+        }
+        let mut furnishing = Furnishing::new(low, high);
+        furnishing.name = f.name.clone();
+        if let Some(other) = boxes.iter().position(|b| b.overlaps(&furnishing)) {
+            return Err(at(entry.span().start, format!("`furnishings[{k}]` overlaps `furnishings[{other}]`")));
+        }
+        let face_error = |e: Error| at(entry.span().start, e);
+        if let Some(all) = &f.all {
+            furnishing.faces = [wall_behaviour(&format!("furnishings[{k}].all"), all).map_err(face_error)?; 6];
+        }
+        for (face, file) in [&f.bottom, &f.top, &f.x0, &f.x1, &f.y0, &f.y1].into_iter().enumerate() {
+            if let Some(file) = file {
+                let prefix = format!("furnishings[{k}].{}", FACE_NAMES[face]);
+                furnishing.faces[face] = wall_behaviour(&prefix, file).map_err(face_error)?;
+            }
+        }
+        boxes.push(furnishing);
+    }
+    Ok(boxes)
 }
 
 fn gravity(g: f64) -> [f64; 3] {
@@ -366,6 +441,7 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
         ));
     }
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
+    scene.furnishings = furnishings(path, &text, &file.furnishings, scene.geometry.size())?;
     set(&mut study.transient, file.run.transient);
     check_transient(path, study.transient)?;
     set(&mut study.diameters, file.particles.diameters.clone());

@@ -567,6 +567,8 @@ pub struct Fates {
     pub particles: usize,
     /// Deposited on the floor, the ceiling, the vertical walls.
     pub deposited: [usize; 3],
+    /// Deposited on the furnishings' faces.
+    pub furnishings: usize,
     /// Still airborne at the end.
     pub airborne: usize,
     /// Exhausted by ventilation.
@@ -582,6 +584,7 @@ impl From<&RoomPoint> for Fates {
         Self {
             particles: p.balance.injected,
             deposited: p.deposited.map(|(n, _)| n),
+            furnishings: p.furnishings.iter().map(|f| f.deposited.0).sum(),
             airborne: p.balance.airborne,
             exhausted: p.balance.exhausted,
             escaped: p.balance.escaped,
@@ -613,6 +616,8 @@ pub struct MassSplit {
     pub injected: f64,
     /// Deposited on the floor, the ceiling and the vertical walls.
     pub deposited: [Portion; 3],
+    /// Deposited on the furnishings' faces.
+    pub furnishings: Portion,
     /// Airborne at the end of the run.
     pub airborne: Portion,
     /// Exhausted by ventilation.
@@ -639,6 +644,7 @@ impl MassSplit {
     #[must_use]
     pub fn accounted(&self) -> f64 {
         self.deposited.iter().map(|p| p.value).sum::<f64>()
+            + self.furnishings.value
             + self.airborne.value
             + self.exhausted.value
             + self.escaped.value
@@ -692,12 +698,12 @@ fn quadrature_bound(f: f64, neighbours: impl Iterator<Item = f64>) -> Option<f64
 #[must_use]
 pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
     let n = bins.len();
-    let shares: Vec<[f64; 6]> = fates
+    let shares: Vec<[f64; 7]> = fates
         .iter()
         .map(|f| {
             let p = f.particles.max(1) as f64;
             let [a, b, c] = f.deposited;
-            [a, b, c, f.airborne, f.exhausted, f.escaped].map(|k| k as f64 / p)
+            [a, b, c, f.airborne, f.exhausted, f.escaped, f.furnishings].map(|k| k as f64 / p)
         })
         .collect();
     let neighbours = |i: usize| {
@@ -747,6 +753,7 @@ pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
     MassSplit {
         injected,
         deposited: [portion(0), portion(1), portion(2)],
+        furnishings: portion(6),
         airborne: portion(3),
         exhausted: portion(4),
         escaped: portion(5),
@@ -957,7 +964,7 @@ mod tests {
 
     fn fates(particles: usize, deposited: [usize; 3], airborne: usize, exhausted: usize, beta: f64) -> Fates {
         let beta = Estimate { value: beta, error: 0.1 * beta, events: deposited.iter().sum(), upper_bound: 1.2 * beta };
-        Fates { particles, deposited, airborne, exhausted, escaped: 0, beta }
+        Fates { particles, deposited, furnishings: 0, airborne, exhausted, escaped: 0, beta }
     }
 
     fn bin(diameter: f64, mass: f64) -> Bin {

@@ -40,19 +40,24 @@ impl Orientation {
     }
 }
 
-/// One wall: the axis it is normal to, its side and its plane.
+/// One wall, or one face of a furnishing ([`crate::furnishing`]): the axis it is normal to,
+/// the side it faces and its plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wall {
     /// Its number (see the module docs).
     pub id: usize,
     /// The coordinate axis it is normal to (0 = x, 1 = y, 2 = z).
     pub axis: usize,
-    /// True for the wall at the upper end of its axis.
+    /// True when it faces down its axis (its normal into the air is `-axis`): a room's wall
+    /// at the upper end of its axis, or a furnishing's face at the lower end of its box.
     pub upper: bool,
     /// Coordinate of its plane, m.
     pub position: f64,
     /// Area, m^2.
     pub area: f64,
+    /// The furnishing it is a face of, by index into
+    /// [`Scene::furnishings`](crate::Scene::furnishings); `None` for the room's own walls.
+    pub furnishing: Option<usize>,
 }
 
 impl Wall {
@@ -128,7 +133,14 @@ impl Geometry {
             let area = size[(axis + 1) % 3] * size[(axis + 2) % 3];
             for upper in [false, true] {
                 let id = walls.len();
-                walls.push(Wall { id, axis, upper, position: if upper { size[axis] } else { 0.0 }, area });
+                walls.push(Wall {
+                    id,
+                    axis,
+                    upper,
+                    position: if upper { size[axis] } else { 0.0 },
+                    area,
+                    furnishing: None,
+                });
             }
         }
         walls

@@ -11,6 +11,8 @@
 //! - [`geometry`]: a room (six walls) or a plane channel (two walls, periodic along and across).
 //! - [`flow`]: mean flow (still, uniform, Poiseuille, Reichardt's turbulent profile) and the
 //!   near-wall stochastic dispersion model, tabulated once per run.
+//! - [`furnishing`]: solid boxes inside a room (tables, shelves), each face a surface with
+//!   its own wall behaviour and tally.
 //! - [`scene`]: a whole run's setup: walls (sink, mirror or wall law), forces, integrator, time
 //!   step, injection; validated once.
 //! - `noise` (internal): each particle's random streams and its standard normal variates,
@@ -56,6 +58,7 @@ pub mod decay;
 pub mod distribution;
 pub mod excursions;
 pub mod flow;
+pub mod furnishing;
 pub mod geometry;
 mod noise;
 pub mod run;
@@ -67,6 +70,7 @@ pub use air::{Aerodynamics, Air};
 pub use decay::{log_linear_fit, Comparison, DecayCurve, DecayFit, LogLinear};
 pub use excursions::{Excursions, Splitting};
 pub use flow::Flow;
+pub use furnishing::Furnishing;
 pub use geometry::{Geometry, Orientation, Wall};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Estimate, Run};
 pub use scene::{Drag, Injection, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};

@@ -49,8 +49,8 @@ pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
         records,
         particles,
         tallies,
-        walls: prepared.walls,
-        volume: scene.geometry.volume(),
+        walls: prepared.surfaces,
+        volume: scene.free_volume(),
         duration,
         dt: scene.dt,
         window: prepared.window,
@@ -98,7 +98,7 @@ fn track_range(
     prepared: &Prepared<'_>,
     ids: std::ops::Range<usize>,
 ) -> (Vec<Record>, Vec<ParticleTally>, Vec<WallTally>) {
-    let wall_count = prepared.walls.len();
+    let wall_count = prepared.surfaces.len();
     let window = prepared.window;
     let first = ids.start;
     let chunks: Vec<(Vec<Record>, Vec<ParticleTally>, Vec<WallTally>)> = (first / CHUNK..ids.end.div_ceil(CHUNK))
@@ -200,7 +200,7 @@ pub struct Balance {
     pub injected: usize,
     /// Still airborne.
     pub airborne: usize,
-    /// Deposited, per wall.
+    /// Deposited, per surface (walls, then furnishing faces; see [`Run::walls`]).
     pub deposited: Vec<usize>,
     /// Escaped.
     pub escaped: usize,
@@ -210,7 +210,7 @@ pub struct Balance {
     pub injected_mass: f64,
     /// Airborne mass, kg.
     pub airborne_mass: f64,
-    /// Deposited mass per wall, kg.
+    /// Deposited mass per surface, kg.
     pub deposited_mass: Vec<f64>,
     /// Escaped mass, kg.
     pub escaped_mass: f64,
@@ -225,11 +225,12 @@ pub struct Run {
     pub records: Vec<Record>,
     /// What each injected particle contributed to the window's statistics, in injection order.
     pub particles: Vec<ParticleTally>,
-    /// Impact statistics per wall.
+    /// Impact statistics per surface.
     pub tallies: Vec<WallTally>,
-    /// The walls, in id order.
+    /// The surfaces in id order: the walls, then the furnishings' faces
+    /// ([`Scene::surfaces`]).
     pub walls: Vec<Wall>,
-    /// Domain volume, m^3.
+    /// The air's volume (the domain's less the furnishings'), m^3.
     pub volume: f64,
     /// Simulated time, s.
     pub duration: f64,
@@ -254,7 +255,8 @@ impl Run {
         (self.duration / self.dt).round() as u64
     }
 
-    /// Counts and masses: airborne + deposited + escaped = injected, exactly.
+    /// Counts and masses: airborne + deposited (per surface, walls and furnishing faces) +
+    /// escaped + exhausted = injected, exactly.
     #[must_use]
     pub fn balance(&self) -> Balance {
         let mut b = Balance {
@@ -297,8 +299,9 @@ impl Run {
     #[must_use]
     pub fn deposition_velocity(&self, walls: &[usize]) -> Estimate {
         let area: f64 = walls.iter().map(|&w| self.walls[w].area).sum();
-        let events = self.particles.iter().map(|p| walls.iter().map(|&w| p.events[w] as usize).sum::<usize>()).sum();
-        let samples = self.particles.iter().map(|p| (walls.iter().map(|&w| p.deposited[w]).sum::<f64>(), p.exposure));
+        let events = self.particles.iter().map(|p| walls.iter().map(|&w| p.events_on(w) as usize).sum::<usize>()).sum();
+        let samples =
+            self.particles.iter().map(|p| (walls.iter().map(|&w| p.deposited_on(w)).sum::<f64>(), p.exposure));
         let scale = if area > 0.0 { self.volume / area } else { 0.0 };
         Estimate::ratio(samples, scale, events, self.smallest_weight)
     }
@@ -309,7 +312,7 @@ impl Run {
     #[must_use]
     pub fn truncated_share(&self) -> f64 {
         let truncated: f64 = self.particles.iter().map(|p| p.truncated).sum();
-        let deposited: f64 = self.particles.iter().map(|p| p.deposited.iter().sum::<f64>()).sum();
+        let deposited: f64 = self.particles.iter().map(ParticleTally::deposited_total).sum();
         if truncated > 0.0 {
             truncated / deposited
         } else {
@@ -346,17 +349,46 @@ impl Run {
         Some(self.particles.iter().map(|p| (deposits(p) - r * p.exposure) / exposure).collect())
     }
 
-    /// The walls of one orientation.
+    /// The room's own walls of one orientation (not the furnishings' faces: see
+    /// [`Run::surfaces_facing`]).
     #[must_use]
     pub fn walls_facing(&self, orientation: Orientation) -> Vec<usize> {
+        self.walls.iter().filter(|w| w.furnishing.is_none() && w.orientation() == orientation).map(|w| w.id).collect()
+    }
+
+    /// Every surface of one orientation, walls and furnishing faces (a table's top faces up
+    /// like the floor).
+    #[must_use]
+    pub fn surfaces_facing(&self, orientation: Orientation) -> Vec<usize> {
         self.walls.iter().filter(|w| w.orientation() == orientation).map(|w| w.id).collect()
+    }
+
+    /// The faces of furnishing `k`, in face order.
+    #[must_use]
+    pub fn furnishing_faces(&self, k: usize) -> Vec<usize> {
+        self.walls.iter().filter(|w| w.furnishing == Some(k)).map(|w| w.id).collect()
+    }
+
+    /// All surfaces' area over the air's volume, 1/m: the room's walls and the furnishings'
+    /// faces over the room's volume less the furnishings'.
+    #[must_use]
+    pub fn surface_to_volume(&self) -> f64 {
+        self.walls.iter().map(|w| w.area).sum::<f64>() / self.volume
     }
 
     /// Deposition map of one wall: the tracked particles' deposits over the whole run on a
     /// `bins[0] x bins[1]` grid over its two in-plane axes (in the order x, y, z without the
-    /// wall's own axis), row-major.
+    /// wall's own axis), row-major, spanning `[0, size]` (for a furnishing's face, pass the
+    /// box's extent with [`Run::deposition_map_within`]).
     #[must_use]
     pub fn deposition_map(&self, wall: usize, size: [f64; 3], bins: [usize; 2]) -> Vec<u32> {
+        self.deposition_map_within(wall, [0.0; 3], size, bins)
+    }
+
+    /// [`Run::deposition_map`] over the box `[low, high]` (m).
+    #[must_use]
+    pub fn deposition_map_within(&self, wall: usize, low: [f64; 3], high: [f64; 3], bins: [usize; 2]) -> Vec<u32> {
+        let size: [f64; 3] = std::array::from_fn(|a| high[a] - low[a]);
         let axis = self.walls[wall].axis;
         let (a, b) = match axis {
             0 => (1, 2),
@@ -365,8 +397,8 @@ impl Run {
         };
         let mut map = vec![0u32; bins[0] * bins[1]];
         for r in self.records.iter().filter(|r| r.fate == Fate::Deposited(wall)) {
-            let i = ((r.position[a] / size[a] * bins[0] as f64) as usize).min(bins[0] - 1);
-            let j = ((r.position[b] / size[b] * bins[1] as f64) as usize).min(bins[1] - 1);
+            let i = (((r.position[a] - low[a]) / size[a] * bins[0] as f64).max(0.0) as usize).min(bins[0] - 1);
+            let j = (((r.position[b] - low[b]) / size[b] * bins[1] as f64).max(0.0) as usize).min(bins[1] - 1);
             map[i * bins[1] + j] += 1;
         }
         map

@@ -8,7 +8,8 @@ use depo_wall_model::{SizeDependence, WallLaw};
 use crate::air::{Air, STANDARD_GRAVITY};
 use crate::excursions::Excursions;
 use crate::flow::Flow;
-use crate::geometry::Geometry;
+use crate::furnishing::{free_volume, Furnishing, FACE_NAMES, ROOM_SURFACES};
+use crate::geometry::{Geometry, Wall};
 
 /// What a wall does with a particle that touches it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -137,6 +138,9 @@ pub struct Scene {
     /// exhausted at a rate `a`, wherever it is, so that without deposition the airborne
     /// number falls as `exp(-a t)`, exactly at the ends of steps (see [`mod@crate::run`]).
     pub air_exchange: f64,
+    /// Solid boxes inside a room, each face a surface of its own (see [`crate::furnishing`]);
+    /// none by default. They may not overlap and must lie strictly inside the room.
+    pub furnishings: Vec<Furnishing>,
 }
 
 impl Scene {
@@ -162,7 +166,56 @@ impl Scene {
             average_from: 0.0,
             excursions: None,
             air_exchange: 0.0,
+            furnishings: Vec::new(),
         }
+    }
+
+    /// Every surface: the domain's walls in id order, then each furnishing's faces
+    /// ([`crate::furnishing`]), so that a surface's id is its index.
+    #[must_use]
+    pub fn surfaces(&self) -> Vec<Wall> {
+        let mut surfaces = self.geometry.walls();
+        for (k, f) in self.furnishings.iter().enumerate() {
+            surfaces.extend(f.faces(k));
+        }
+        surfaces
+    }
+
+    /// Each surface's behaviour, in the order of [`Scene::surfaces`].
+    #[must_use]
+    pub fn surface_behaviours(&self) -> Vec<WallBehaviour> {
+        let mut behaviours = self.walls.clone();
+        for f in &self.furnishings {
+            behaviours.extend(f.faces);
+        }
+        behaviours
+    }
+
+    /// A surface's name: a wall's (`floor`, `x0`; see [`Wall::name`]) or a furnishing face's
+    /// (`table.top`, `box2.x1`).
+    #[must_use]
+    pub fn surface_name(&self, id: usize) -> String {
+        if id < ROOM_SURFACES || self.furnishings.is_empty() {
+            let walls = self.geometry.walls();
+            return walls.get(id).map_or_else(|| format!("surface{id}"), |w| w.name(&self.geometry).to_string());
+        }
+        let (k, f) = ((id - ROOM_SURFACES) / 6, (id - ROOM_SURFACES) % 6);
+        match self.furnishings.get(k) {
+            Some(box_) => format!("{}.{}", box_.label(k), FACE_NAMES[f]),
+            None => format!("surface{id}"),
+        }
+    }
+
+    /// The air's volume: the domain's less the furnishings', m^3.
+    #[must_use]
+    pub fn free_volume(&self) -> f64 {
+        free_volume(self.geometry.size(), &self.furnishings)
+    }
+
+    /// All surfaces' area (walls and furnishing faces) over the free air volume, 1/m.
+    #[must_use]
+    pub fn surface_to_volume(&self) -> f64 {
+        self.surfaces().iter().map(|w| w.area).sum::<f64>() / self.free_volume()
     }
 
     /// Sets every wall to `behaviour`.
@@ -282,9 +335,75 @@ impl Scene {
                 }
             }
         }
+        self.validate_furnishings(injection, largest)
+    }
+
+    /// The furnishings' part of [`Scene::validate`]; `largest` is the largest diameter
+    /// injected (m).
+    fn validate_furnishings(&self, injection: &Injection, largest: f64) -> Result<(), SceneError> {
+        if self.furnishings.is_empty() {
+            return Ok(());
+        }
+        let size = self.geometry.size();
+        if !matches!(self.geometry, Geometry::Room { .. }) {
+            return Err(SceneError::new("furnishings", self.furnishings.len() as f64, "need a room"));
+        }
+        for (k, f) in self.furnishings.iter().enumerate() {
+            let field = |key: &str| format!("furnishings[{k}].{key}");
+            for ((lo, hi), length) in f.low.into_iter().zip(f.high).zip(size) {
+                if !(lo.is_finite() && lo > 0.0 && lo < length) {
+                    return Err(SceneError {
+                        field: field("low"),
+                        value: lo,
+                        requirement: "must lie strictly inside the room",
+                    });
+                }
+                if !(hi.is_finite() && hi > lo && hi < length) {
+                    return Err(SceneError {
+                        field: field("high"),
+                        value: hi,
+                        requirement: "must lie strictly inside the room and above `low`",
+                    });
+                }
+            }
+            if let Some(other) = self.furnishings[..k].iter().position(|o| o.overlaps(f)) {
+                return Err(SceneError {
+                    field: field("low"),
+                    value: other as f64,
+                    requirement: "must not overlap another furnishing (the one at this index)",
+                });
+            }
+        }
+        // Particles are drawn uniformly over the free part of the injection region (see the
+        // tracker's injection): it must be a good part of the region.
+        let (lo, hi) = injection.region.unwrap_or(([0.0; 3], size));
+        let region: f64 = (0..3).map(|a| (hi[a] - lo[a]).max(0.0)).product();
+        let r = 0.5 * largest;
+        let grown: f64 = self
+            .furnishings
+            .iter()
+            .map(|f| Furnishing { low: f.low.map(|l| l - r), high: f.high.map(|h| h + r), ..f.clone() })
+            .map(|f| f.shared_volume(lo, hi))
+            .sum();
+        let middle: [f64; 3] = std::array::from_fn(|a| 0.5 * (lo[a] + hi[a]));
+        let blocked = if region > 0.0 {
+            grown > (1.0 - MIN_FREE_SHARE) * region
+        } else {
+            self.furnishings.iter().any(|f| f.holds(middle, r))
+        };
+        if blocked {
+            return Err(SceneError::new(
+                "particles.region",
+                grown / region,
+                "is almost all inside furnishings: at least 1 % of it must be free air",
+            ));
+        }
         Ok(())
     }
 }
+
+/// The least share of the injection region left free by the furnishings.
+const MIN_FREE_SHARE: f64 = 0.01;
 
 fn finite(field: &str, v: f64) -> Result<(), SceneError> {
     if v.is_finite() {

@@ -14,6 +14,8 @@
 //! steady deposition rate that does not wait for the Brownian sublayer to fill, and in the
 //! room at 0.1 um six to eight times as efficient as plain tracking (`1 / (error^2 time)`;
 //! see `docs/performance-log.md`). `excursions: false` gives plain tracking, for comparison.
+//! In a furnished room ([`Scene::furnishings`]) the excursions start at the furnishings'
+//! near-wall layers as at the walls' (their gap is to the nearest wall or box).
 
 use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
@@ -154,14 +156,19 @@ pub struct RoomPoint {
     pub indoor_outdoor: Option<Estimate>,
     /// The wall-law tallies summed over all surfaces.
     pub tally: WallTally,
-    /// Deposition maps, one per wall in id order (floor, ceiling, x0, x1, y0, y1), each on a
-    /// [`MAP_BINS`] grid over the wall's two in-plane axes in the order x, y, z (rows, columns):
-    /// the floor's over x and y, the `x0`/`x1` walls' over y and z.
+    /// Deposition maps, one per surface in id order (floor, ceiling, x0, x1, y0, y1, then the
+    /// furnishings' faces), each on a [`MAP_BINS`] grid over the surface's two in-plane axes in
+    /// the order x, y, z (rows, columns): the floor's over x and y, the `x0`/`x1` walls' over
+    /// y and z; a furnishing face's over the box's extent.
     pub maps: Vec<Vec<u32>>,
     /// Deposited count and mass (kg) of the tracked particles over the whole run onto the
-    /// floor, the ceiling and the vertical walls: with `balance`'s exhausted and airborne, the
-    /// whole release, exactly.
+    /// room's floor, ceiling and vertical walls (the furnishings' faces are in `furnishings`):
+    /// with those and `balance`'s exhausted and airborne, the whole release, exactly.
     pub deposited: [(usize, f64); 3],
+    /// Each furnishing's deposition figures, in the order of [`Scene::furnishings`].
+    pub furnishings: Vec<FurnishingPoint>,
+    /// All surfaces' area over the air's volume, 1/m ([`Scene::surface_to_volume`]).
+    pub surface_to_volume: f64,
     /// The airborne share of the release over the run ([`DECAY_INTERVALS`] intervals; see
     /// [`crate::decay`]).
     pub decay: DecayCurve,
@@ -171,6 +178,25 @@ pub struct RoomPoint {
     /// Where the tracked particles are at the end of the run (with ventilation, the exhausted
     /// ones too): the mass balance a size distribution's is summed from.
     pub balance: Balance,
+}
+
+/// One furnishing's figures in a room study.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FurnishingPoint {
+    /// Its name ([`Furnishing::label`](crate::Furnishing::label)).
+    pub name: String,
+    /// The area of its faces, m^2.
+    pub area: f64,
+    /// Deposition velocity onto all its faces together, m/s.
+    pub all: Estimate,
+    /// Onto each face, in face order (bottom, top, x0, x1, y0, y1), m/s.
+    pub faces: [Estimate; 6],
+    /// Onto its four vertical faces together, m/s.
+    pub sides: Estimate,
+    /// Deposited count and mass (kg) over the whole run, on all its faces.
+    pub deposited: (usize, f64),
+    /// Deposited count and mass (kg) per face.
+    pub face_deposited: [(usize, f64); 6],
 }
 
 /// The deposition maps' grid.
@@ -272,7 +298,37 @@ impl RoomStudy {
                 particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
                 tally: total(&result.tallies),
-                maps: (0..result.walls.len()).map(|w| result.deposition_map(w, size, MAP_BINS)).collect(),
+                maps: result
+                    .walls
+                    .iter()
+                    .map(|w| match w.furnishing {
+                        None => result.deposition_map(w.id, size, MAP_BINS),
+                        Some(k) => {
+                            let b = &scene.furnishings[k];
+                            result.deposition_map_within(w.id, b.low, b.high, MAP_BINS)
+                        }
+                    })
+                    .collect(),
+                furnishings: scene
+                    .furnishings
+                    .iter()
+                    .enumerate()
+                    .map(|(k, b)| {
+                        let faces = result.furnishing_faces(k);
+                        let face_deposited: [(usize, f64); 6] =
+                            std::array::from_fn(|f| (balance.deposited[faces[f]], balance.deposited_mass[faces[f]]));
+                        FurnishingPoint {
+                            name: b.label(k),
+                            area: b.area(),
+                            all: result.deposition_velocity(&faces),
+                            faces: std::array::from_fn(|f| result.deposition_velocity(&faces[f..=f])),
+                            sides: result.deposition_velocity(&faces[2..]),
+                            deposited: face_deposited.iter().fold((0, 0.0), |(n, m), &(dn, dm)| (n + dn, m + dm)),
+                            face_deposited,
+                        }
+                    })
+                    .collect(),
+                surface_to_volume: result.surface_to_volume(),
                 deposited: [Orientation::Floor, Orientation::Ceiling, Orientation::Wall].map(|o| {
                     result
                         .walls_facing(o)

@@ -63,9 +63,10 @@ use rand_distr::{Distribution, LogNormal};
 use crate::air::{schiller_naumann, Aerodynamics};
 use crate::excursions::Excursions;
 use crate::flow::FlowField;
+use crate::furnishing::Furnishing;
 use crate::geometry::Wall;
 use crate::noise::{particle_rng, Normals};
-use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution};
+use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
 
 mod contacts;
 mod excursions;
@@ -75,7 +76,7 @@ mod lanes;
 pub use excursions::ParticleTally;
 
 use contacts::{contacts, inside, wrap, AfterContacts, Flight};
-use fluid::{fluid_velocity, fluid_velocity_and_fluctuation, saffman_lift};
+use fluid::{fluid_velocity, fluid_velocity_and_fluctuation, furnished_fluid_velocity, saffman_lift};
 use lanes::run_lanes;
 
 /// Contacts allowed in one step before a bouncing particle counts as resting on the wall.
@@ -91,7 +92,8 @@ const BISECTIONS: usize = 48;
 pub enum Fate {
     /// Still in the air.
     Airborne,
-    /// Deposited on the wall with this id.
+    /// Deposited on the surface with this id: a wall, or a furnishing's face
+    /// ([`Scene::surfaces`]).
     Deposited(usize),
     /// Lost to the statistics: a non-finite state or a contact the wall law flagged invalid.
     Escaped,
@@ -149,7 +151,14 @@ pub(crate) struct Prepared<'a> {
     pub scene: &'a Scene,
     pub injection: &'a Injection,
     pub field: FlowField,
+    /// The domain's walls (the planes the contact search checks one by one).
     pub walls: Vec<Wall>,
+    /// Every surface, walls and then furnishing faces, in id order (the tallies' order).
+    pub surfaces: Vec<Wall>,
+    /// Each surface's behaviour, in id order.
+    pub behaviours: Vec<WallBehaviour>,
+    /// The furnishings (empty in most scenes, which then take no furnished path).
+    pub boxes: &'a [Furnishing],
     pub size: [f64; 3],
     pub walled: [bool; 3],
     /// Per axis, the walls' coordinates (`0` and the size), infinite along periodic axes.
@@ -172,6 +181,9 @@ impl<'a> Prepared<'a> {
             injection,
             field: FlowField::new(&scene.flow, size, nu, scene.dt, scene.drift_correction),
             walls: scene.geometry.walls(),
+            surfaces: scene.surfaces(),
+            behaviours: scene.surface_behaviours(),
+            boxes: &scene.furnishings,
             size,
             walled,
             lower: walled.map(|w| if w { 0.0 } else { f64::NEG_INFINITY }),
@@ -346,8 +358,10 @@ pub(crate) fn track(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [
     // (Lanes pay where there are look-ups to overlap, or where the forcing is constant and they
     // fly freely; a scene with Brownian motion alone, or a laminar profile, runs faster one
     // particle at a time.)
+    // Furnished scenes take the one-particle loop: its contact search and turbulence know the
+    // boxes, the lanes' free-flight bounds and table look-ups do not.
     let free = !(brown || turb) && p.field.profile.is_none();
-    if (turb || free) && !(finite_re || euler || lift) {
+    if (turb || free) && !(finite_re || euler || lift) && p.boxes.is_empty() {
         return match (turb, brown) {
             (true, true) => run_lanes::<true, true>(p, ids, tally),
             (true, false) => run_lanes::<false, true>(p, ids, tally),
@@ -427,6 +441,9 @@ fn exhaust_steps(p: &Prepared<'_>, id: u64) -> usize {
     }
 }
 
+/// The most positions drawn for one particle before its injection gives up (see `inject`).
+const MAX_INJECTION_DRAWS: usize = 10_000;
+
 /// Salt of the stream that draws a particle's exhaust time.
 const EXHAUST_SALT: u64 = 0x3c6e_f372_fe94_f82b;
 
@@ -438,9 +455,19 @@ fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
     let r = body.radius;
     let (lo, hi) = p.injection.region.unwrap_or(([0.0; 3], p.size));
     let mut start = [0.0; 3];
-    for a in 0..3 {
-        let (l, h) = if p.walled[a] { (lo[a].max(r), hi[a].min(p.size[a] - r)) } else { (lo[a], hi[a]) };
-        start[a] = if h > l { rng.random_range(l..h) } else { 0.5 * (l + h) };
+    // Uniform over the free air: a position inside a furnishing (grown by the radius) is drawn
+    // again, from the particle's own stream (so a scene without furnishings draws once).
+    // `Scene::validate` leaves at least 1 % of the region free: 10^4 draws all fail with a
+    // chance below 1e-43.
+    for attempt in 0.. {
+        for a in 0..3 {
+            let (l, h) = if p.walled[a] { (lo[a].max(r), hi[a].min(p.size[a] - r)) } else { (lo[a], hi[a]) };
+            start[a] = if h > l { rng.random_range(l..h) } else { 0.5 * (l + h) };
+        }
+        if !p.boxes.iter().any(|b| b.holds(start, r)) {
+            break;
+        }
+        assert!(attempt < MAX_INJECTION_DRAWS, "no free air found to inject particle {id} into");
     }
     let x = DVec3::from_array(start);
     let mut normals = Normals::from_rng(&mut rng);
@@ -452,9 +479,14 @@ fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
     if turb {
         zeta = [z[0], z[1], z[2]];
     }
+    let uf = if p.boxes.is_empty() {
+        fluid_velocity::<true>(&p.field, p.size, x, &zeta)
+    } else {
+        furnished_fluid_velocity(&p.field, p.size, p.boxes, x, &mut zeta, None)
+    };
     let mut v = match p.injection.velocity {
         Some(v) => DVec3::from_array(v),
-        None => fluid_velocity::<true>(&p.field, p.size, x, &zeta) + body.settling,
+        None => uf + body.settling,
     };
     if brown {
         let sd = body.thermal_variance.sqrt();
@@ -552,7 +584,10 @@ impl Flyer {
         let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
         let z = self.draws.step(n, per_step);
         let (x, v) = (self.x, self.v);
-        let uf = if TURB {
+        let uf = if !p.boxes.is_empty() {
+            let normals = TURB.then(|| [z[0], z[1], z[2]]);
+            furnished_fluid_velocity(field, p.size, p.boxes, x, &mut self.zeta, normals)
+        } else if TURB {
             fluid_velocity_and_fluctuation(field, p.size, x, &mut self.zeta, [z[0], z[1], z[2]])
         } else {
             fluid_velocity::<false>(field, p.size, x, &self.zeta)

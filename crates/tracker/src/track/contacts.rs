@@ -4,6 +4,7 @@
 use depo_wall_model::energy::{energy_loss, EnergyLoss};
 use glam::DVec3;
 
+use crate::furnishing::ROOM_SURFACES;
 use crate::geometry::Wall;
 use crate::scene::WallBehaviour;
 
@@ -74,7 +75,27 @@ pub(super) fn inside(x: DVec3, r: f64, p: &Prepared<'_>) -> bool {
     for ((x, lower), upper) in x.to_array().into_iter().zip(p.lower).zip(p.upper) {
         ok &= (x >= lower + r) & (x <= upper - r);
     }
-    ok
+    // Clear of the furnishings too, each grown by `r` (none in most scenes).
+    ok && (p.boxes.is_empty() || !p.boxes.iter().any(|b| b.holds(x.to_array(), r)))
+}
+
+/// The face of box `k` that a trajectory entering the box grown by `r` crosses, from `x`, a
+/// point just before the entry: the face across the axis along which `x` lies farthest
+/// outside (the face order of [`crate::furnishing`]).
+fn entry_face(p: &Prepared<'_>, k: usize, x: DVec3, r: f64) -> Wall {
+    let b = &p.boxes[k];
+    let (mut best, mut face) = (f64::NEG_INFINITY, 0);
+    for (i, axis) in [2, 0, 1].into_iter().enumerate() {
+        let below = (b.low[axis] - r) - x[axis];
+        let above = x[axis] - (b.high[axis] + r);
+        if below > best {
+            (best, face) = (below, 2 * i);
+        }
+        if above > best {
+            (best, face) = (above, 2 * i + 1);
+        }
+    }
+    p.surfaces[ROOM_SURFACES + 6 * k + face]
 }
 
 #[inline(always)]
@@ -98,7 +119,8 @@ pub(super) enum AfterContacts {
     Left(Fate, f64, DVec3),
 }
 
-/// Resolves the wall contacts of a step whose end lies through a wall.
+/// Resolves the wall contacts of a step whose end lies through a wall or inside a
+/// furnishing (grown by the contact distance).
 #[cold]
 pub(super) fn contacts<const EULER: bool>(
     p: &Prepared<'_>,
@@ -121,8 +143,8 @@ pub(super) fn contacts<const EULER: bool>(
         if !x1.is_finite() {
             return AfterContacts::Left(Fate::Escaped, elapsed, s.x);
         }
-        // The earliest plane crossed.
-        let mut first: Option<(f64, &Wall)> = None;
+        // The earliest plane crossed: a wall's, or a furnishing face's.
+        let mut first: Option<(f64, Wall)> = None;
         for wall in &p.walls {
             let plane = if wall.upper { wall.position - r } else { wall.position + r };
             let outside = |x: DVec3| if wall.upper { x[wall.axis] > plane } else { x[wall.axis] < plane };
@@ -139,7 +161,26 @@ pub(super) fn contacts<const EULER: bool>(
                 }
             }
             if first.is_none_or(|(t, _)| hi < t) {
-                first = Some((hi, wall));
+                first = Some((hi, *wall));
+            }
+        }
+        for (k, b) in p.boxes.iter().enumerate() {
+            if !b.holds(x1.to_array(), r) {
+                continue;
+            }
+            // When the trajectory enters the grown box (module docs of `furnishing`).
+            let (mut lo, mut hi) = (0.0, flight.dt);
+            for _ in 0..BISECTIONS {
+                let mid = 0.5 * (lo + hi);
+                if b.holds(flight.at(mid).0.to_array(), r) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            if first.is_none_or(|(t, _)| hi < t) {
+                let before = if lo > 0.0 { flight.at(lo).0 } else { flight.x0 };
+                first = Some((hi, entry_face(p, k, before, r)));
             }
         }
         let (t, wall) = first.expect("a step ending outside crossed a wall plane");
@@ -159,7 +200,7 @@ pub(super) fn contacts<const EULER: bool>(
         let left = flight.dt - t;
         let w = &mut tally[wall.id];
         w.contacts += 1;
-        match p.scene.walls[wall.id] {
+        match p.behaviours[wall.id] {
             WallBehaviour::Sink => {
                 w.captures += 1;
                 w.energy.deposition += 0.5 * body.aero.mass * v.length_squared();

@@ -8,20 +8,27 @@ use rand::rngs::Xoshiro256PlusPlus;
 use rand::RngExt;
 
 use crate::excursions::{Excursions, MAX_LEVELS};
+use crate::furnishing::Furnishing;
 use crate::noise::{branch_rng, particle_rng, Normals};
 
 use super::{normals_per_step, Fate, Flyer, Prepared, Record, Step, WallTally};
 
 /// What one injected particle contributed to a run's averaging window.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ParticleTally {
     /// Airborne time within the averaging window, s.
     pub exposure: f64,
-    /// Deposits within the averaging window, per wall id: the particle's own without
-    /// excursions, its excursions' weighted deposits with them.
+    /// Deposits within the averaging window, per wall id (the room's six walls, or a
+    /// channel's two): the particle's own without excursions, its excursions' weighted
+    /// deposits with them.
     pub deposited: [f64; 6],
     /// Deposit events behind `deposited`, per wall id (unweighted).
     pub events: [u32; 6],
+    /// Deposits within the averaging window on furnishings' faces (surface ids 6 and up), as
+    /// `deposited` and `events` count them on the walls: `(surface, weight, events)`, one
+    /// entry per surface reached, in the order first reached (empty, without allocating, in a
+    /// bare room). [`ParticleTally::deposited_on`] and [`ParticleTally::events_on`] read both.
+    pub on_furnishings: Vec<(usize, f64, u32)>,
     /// Excursions started.
     pub excursions: u32,
     /// Weight of the excursions' branches given up at [`Excursions::max_duration`] while
@@ -42,6 +49,7 @@ impl Default for ParticleTally {
             exposure: 0.0,
             deposited: [0.0; 6],
             events: [0; 6],
+            on_furnishings: Vec::new(),
             excursions: 0,
             truncated: 0.0,
             arrivals: [0.0; MAX_LEVELS],
@@ -57,11 +65,48 @@ impl ParticleTally {
         let mut t = Self { exposure: overlap(0.0, record.time, window), ..Self::default() };
         if let Fate::Deposited(w) = record.fate {
             if record.time >= window[0] && record.time <= window[1] {
-                t.deposited[w] = 1.0;
-                t.events[w] = 1;
+                t.add_deposit(w, 1.0);
             }
         }
         t
+    }
+
+    /// A deposit of `weight` on surface `w`.
+    #[inline]
+    fn add_deposit(&mut self, w: usize, weight: f64) {
+        if w < self.deposited.len() {
+            self.deposited[w] += weight;
+            self.events[w] += 1;
+        } else if let Some(entry) = self.on_furnishings.iter_mut().find(|(s, ..)| *s == w) {
+            entry.1 += weight;
+            entry.2 += 1;
+        } else {
+            self.on_furnishings.push((w, weight, 1));
+        }
+    }
+
+    /// Deposits within the averaging window on surface `w` (a wall, or a furnishing's face).
+    #[must_use]
+    pub fn deposited_on(&self, w: usize) -> f64 {
+        match self.deposited.get(w) {
+            Some(&d) => d,
+            None => self.on_furnishings.iter().filter(|(s, ..)| *s == w).map(|e| e.1).sum(),
+        }
+    }
+
+    /// Deposit events within the averaging window on surface `w` (unweighted).
+    #[must_use]
+    pub fn events_on(&self, w: usize) -> u32 {
+        match self.events.get(w) {
+            Some(&e) => e,
+            None => self.on_furnishings.iter().filter(|(s, ..)| *s == w).map(|e| e.2).sum(),
+        }
+    }
+
+    /// All deposits within the averaging window, on every surface.
+    #[must_use]
+    pub fn deposited_total(&self) -> f64 {
+        self.deposited.iter().sum::<f64>() + self.on_furnishings.iter().map(|e| e.1).sum::<f64>()
     }
 }
 
@@ -71,8 +116,9 @@ fn overlap(a: f64, b: f64, [from, to]: [f64; 2]) -> f64 {
     (b.min(to) - a.max(from)).max(0.0)
 }
 
-/// Distance from the surface of a particle of radius `r` at `x` to the nearest wall, m
-/// (infinite in a domain without walls).
+/// Distance from the surface of a particle of radius `r` at `x` to the nearest wall or
+/// furnishing, m (infinite in a domain without walls); a furnishing's is the Euclidean
+/// distance from `x` to the box.
 #[inline]
 fn wall_gap(p: &Prepared<'_>, x: DVec3, r: f64) -> f64 {
     let mut gap = f64::INFINITY;
@@ -81,7 +127,37 @@ fn wall_gap(p: &Prepared<'_>, x: DVec3, r: f64) -> f64 {
             gap = gap.min(x[a] - p.lower[a]).min(p.upper[a] - x[a]);
         }
     }
+    for b in p.boxes {
+        let outside = |a: usize| (b.low[a] - x[a]).max(x[a] - b.high[a]).max(0.0);
+        gap = gap.min((0..3).map(|a| outside(a).powi(2)).sum::<f64>().sqrt());
+    }
     gap - r
+}
+
+/// [`free_flight_gap`]'s part for box `b`: along each axis on which the particle lies
+/// outside the box, the separation less the stop distance `tau v` of its velocity towards
+/// the box; in front of a face (outside along one axis only) that, as for a wall; beyond an
+/// edge or corner, the Euclidean norm of the separations left (none below zero).
+#[inline]
+fn box_free_flight_gap(b: &Furnishing, x: DVec3, v: DVec3, tau: f64) -> f64 {
+    let (mut outside, mut single, mut squares) = (0, 0.0, 0.0);
+    for a in 0..3 {
+        let separation = if x[a] < b.low[a] {
+            b.low[a] - x[a] - tau * v[a].max(0.0)
+        } else if x[a] > b.high[a] {
+            x[a] - b.high[a] + tau * v[a].min(0.0)
+        } else {
+            continue;
+        };
+        outside += 1;
+        single = separation;
+        squares += separation.max(0.0).powi(2);
+    }
+    if outside == 1 {
+        single
+    } else {
+        squares.sqrt()
+    }
 }
 
 /// The gap a particle would have left after flying freely towards the nearest wall, m: for
@@ -99,6 +175,9 @@ fn free_flight_gap(p: &Prepared<'_>, flyer: &Flyer) -> f64 {
             let upper = p.upper[a] - x[a] - r - tau * v[a].max(0.0);
             gap = gap.min(lower).min(upper);
         }
+    }
+    for b in p.boxes {
+        gap = gap.min(box_free_flight_gap(b, x, v, tau) - r);
     }
     gap
 }
@@ -219,8 +298,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
             }
             match flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, scratch) {
                 Step::Left(Fate::Deposited(w), ..) => {
-                    stats.deposited[w] += weight;
-                    stats.events[w] += 1;
+                    stats.add_deposit(w, weight);
                     break;
                 }
                 Step::Left(..) => break,
@@ -296,3 +374,25 @@ fn window_weight(
 /// Salt of the stream that samples crossings and plays roulette (any constant other than the
 /// particle streams' own).
 const SAMPLER_SALT: u64 = 0x7f4a_7c15_9e37_79b9;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_box_s_free_flight_gap_is_a_wall_s_in_front_of_a_face_and_euclidean_beyond_an_edge() {
+        let b = Furnishing::new([1.0, 1.0, 1.0], [2.0, 2.0, 2.0]);
+        // In front of the x0 face, 0.3 m off, coasting towards it: 0.3 - tau v, below zero
+        // when it would reach the face, as for a wall.
+        let x = DVec3::new(0.7, 1.5, 1.5);
+        assert!((box_free_flight_gap(&b, x, DVec3::new(0.5, 0.0, 0.0), 0.2) - 0.2).abs() < 1e-12);
+        assert!((box_free_flight_gap(&b, x, DVec3::new(2.0, 0.0, 0.0), 0.2) + 0.1).abs() < 1e-12);
+        // Moving away: the plain separation.
+        assert!((box_free_flight_gap(&b, x, DVec3::new(-2.0, 0.0, 0.0), 0.2) - 0.3).abs() < 1e-12);
+        // Beyond an edge, 0.3 m out in x and 0.4 m in y: 0.5 m, less the coasting along x.
+        let x = DVec3::new(0.7, 2.4, 1.5);
+        assert!((box_free_flight_gap(&b, x, DVec3::ZERO, 0.2) - 0.5).abs() < 1e-12);
+        let coasting = box_free_flight_gap(&b, x, DVec3::new(1.5, 0.0, 0.0), 0.2);
+        assert!((coasting - 0.4).abs() < 1e-12, "{coasting}");
+    }
+}

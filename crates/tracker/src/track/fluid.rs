@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use crate::flow::{Component, FlowField, Node};
+use crate::furnishing::{axis_distance, Furnishing};
 
 use super::wall_distance;
 
@@ -19,6 +20,42 @@ pub(super) fn fluid_velocity<const TURB: bool>(field: &FlowField, size: [f64; 3]
             for (a, comp) in turb.iter().enumerate() {
                 let (d, _) = wall_distance(x.to_array()[comp.axis], size[comp.axis]);
                 u[a] += comp.table.at(d).sigma * zeta[a];
+            }
+        }
+    }
+    u
+}
+
+/// The fluid velocity seen at `x` in a furnished room (mean plus `sigma zeta`), each
+/// component's profile taken at its distance to the nearest surface along its axis, room
+/// wall or furnishing face ([`axis_distance`]); with `normals`, `zeta` is then taken one
+/// exact Ornstein-Uhlenbeck step there ([`langevin_step`]), with the drift's sign that of
+/// the change of that distance along the axis.
+#[inline]
+pub(super) fn furnished_fluid_velocity(
+    field: &FlowField,
+    size: [f64; 3],
+    boxes: &[Furnishing],
+    x: DVec3,
+    zeta: &mut [f64; 3],
+    normals: Option<[f64; 3]>,
+) -> DVec3 {
+    let mut u = DVec3::from_array(field.uniform);
+    if let Some(profile) = &field.profile {
+        u.x += profile.at(wall_distance(x.z, size[2]).0).sigma;
+    }
+    if let Some(turb) = &field.turbulence {
+        let at = x.to_array();
+        for (a, comp) in turb.iter().enumerate() {
+            let (d, sign) = axis_distance(at, comp.axis, size[comp.axis], boxes);
+            let node = comp.table.at(d);
+            match normals {
+                Some(normals) => {
+                    let (du, next) = langevin_step(&node, sign, zeta[a], normals[a]);
+                    u[a] += du;
+                    zeta[a] = next;
+                }
+                None => u[a] += node.sigma * zeta[a],
             }
         }
     }

@@ -1,0 +1,281 @@
+//! Furnishings: solid axis-aligned boxes inside a room (tables, shelves, sofas), whose six
+//! faces are surfaces like the room's walls, each with its own wall behaviour and its own
+//! deposition tally.
+//!
+//! ## Surfaces
+//! Box `k` (from 0, in the order of [`Scene::furnishings`](crate::Scene::furnishings)) adds
+//! surfaces `6 + 6k + f` after the room's six walls, its faces `f` numbered as the room's
+//! walls are ([`Geometry::walls`](crate::Geometry::walls)): 0 the bottom (`z = low_z`), 1 the
+//! top (`z = high_z`), 2 and 3 at `x = low_x` and `high_x`, 4 and 5 at `y = low_y` and
+//! `high_y`. A face's normal points out of the box, into the air, so face 1 (the top) faces up
+//! like a floor, face 0 (the bottom) down like a ceiling, and the others are vertical (see
+//! [`Wall::orientation`]). Their names are the box's name and the face's:
+//! `table.top`, `box1.x0`.
+//!
+//! ## Contacts
+//! A particle of radius `r` touches a face when its centre crosses the face's plane offset by
+//! `r` into the air at a point within the face's rectangle widened by `r`: the box grown by
+//! `r` on every side, with sharp edges and corners (the exact contact surface of a sphere
+//! would round them with radius `r`; the difference is a sliver of volume `~ r^2` per unit of
+//! edge length). Contacts are searched where a step ends inside a grown box: the time the
+//! step's own trajectory enters it is found by bisection, and the face is the one whose plane
+//! it crosses there. A step that passes wholly through an edge of a box without ending inside
+//! it is missed, as it must then cross a corner region narrower than the step's displacement
+//! (millimetres in a room's turbulence at `dt = 0.05 s`).
+//!
+//! ## Turbulence
+//! The room's dispersion model ([`crate::flow`]) gives each velocity component `i` the
+//! wall-normal profile of the distance to the surfaces across its axis. With furnishings that
+//! distance is [`axis_distance`]: to the nearest surface across axis `i`, a room wall or a
+//! box face normal to `i`, the faces at their Euclidean distance from the particle. In front
+//! of a face that is the distance along `i`, so the near-wall layer forms at furnishing faces
+//! as at walls; beyond a face's edges it grows smoothly, so the profile has no jump at the
+//! edge of a box's shadow. (A first version took a face only where the particle's projection
+//! fell within it: the distance then jumped at the shadow's edge, from the face's to the
+//! floor's, and particles beside a box carried the core's fluctuation normal to its faces
+//! into their near-wall layers, right up to the face: ultrafine particles deposited onto a
+//! box's sides five times faster than onto the room's walls, a test found.) The well-mixed
+//! drift is the slope of the profile along the component's own axis, `d sigma / dd` times
+//! `dd / dx_i`, the latter `+-1` in front of a face and the cosine of the direction to the
+//! face's edge beyond it. Beside a box, within its extent along `i`, its faces normal to `i`
+//! are edge-on and the distance is to their edge. Like the room's profiles near its corners,
+//! this is a construction of depo's, not a measured flow.
+//!
+//! ## Excursions
+//! Near-wall excursions ([`crate::excursions`]) start where a particle's gap to the nearest
+//! surface falls below their layer and split it by that gap: with furnishings the gap is to
+//! the nearest wall or box (the Euclidean distance to the box; for the free-flight gap, the
+//! separation along each axis on which the particle lies outside the box less the stop
+//! distance of its velocity towards it). So excursions start at a box's faces as at the
+//! walls, and their weighted deposits on each face are tallied as on a wall.
+//!
+//! ## Volume
+//! Boxes may not overlap one another (they may touch) and lie strictly inside the room (a
+//! sofa on the floor stands on short legs: a gap between box and wall), so the free air volume
+//! is the room's volume less the boxes' ([`free_volume`]), and it is the volume of the room's
+//! well-mixed concentration, its deposition velocities and loss rate.
+
+use crate::geometry::{Orientation, Wall};
+use crate::scene::WallBehaviour;
+
+/// The names of a box's faces, in face order.
+pub const FACE_NAMES: [&str; 6] = ["bottom", "top", "x0", "x1", "y0", "y1"];
+
+/// Surfaces of the room itself, before the furnishings' faces.
+pub const ROOM_SURFACES: usize = 6;
+
+/// A solid axis-aligned box inside a room.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Furnishing {
+    /// A name for reports (`table`); `None` for `box1`, `box2`, ... by position.
+    pub name: Option<String>,
+    /// The corner with the smallest coordinates, m.
+    pub low: [f64; 3],
+    /// The corner with the largest coordinates, m.
+    pub high: [f64; 3],
+    /// What each face does with a particle that touches it, in face order (module docs).
+    pub faces: [WallBehaviour; 6],
+}
+
+impl Furnishing {
+    /// A box from `low` to `high` (m) with perfectly absorbing faces.
+    #[must_use]
+    pub fn new(low: [f64; 3], high: [f64; 3]) -> Self {
+        Self { name: None, low, high, faces: [WallBehaviour::Sink; 6] }
+    }
+
+    /// The same with every face `behaviour`.
+    #[must_use]
+    pub fn with_faces(self, behaviour: WallBehaviour) -> Self {
+        Self { faces: [behaviour; 6], ..self }
+    }
+
+    /// The same named `name`.
+    #[must_use]
+    pub fn named(self, name: &str) -> Self {
+        Self { name: Some(name.to_string()), ..self }
+    }
+
+    /// Its name, or `box{k + 1}` for box `k`.
+    #[must_use]
+    pub fn label(&self, k: usize) -> String {
+        self.name.clone().unwrap_or_else(|| format!("box{}", k + 1))
+    }
+
+    /// Volume, m^3.
+    #[must_use]
+    pub fn volume(&self) -> f64 {
+        (0..3).map(|a| self.high[a] - self.low[a]).product()
+    }
+
+    /// Its six faces as surfaces, box `k`'s, in face order (ids `6 + 6k + f`).
+    #[must_use]
+    pub fn faces(&self, k: usize) -> [Wall; 6] {
+        std::array::from_fn(|f| {
+            let axis = [2, 0, 1][f / 2];
+            let at_high = f % 2 == 1;
+            let extent = |a: usize| self.high[a] - self.low[a];
+            Wall {
+                id: ROOM_SURFACES + 6 * k + f,
+                axis,
+                // The face at the box's low end faces down the axis, as a room's upper wall.
+                upper: !at_high,
+                position: if at_high { self.high[axis] } else { self.low[axis] },
+                area: extent((axis + 1) % 3) * extent((axis + 2) % 3),
+                furnishing: Some(k),
+            }
+        })
+    }
+
+    /// The faces' area, m^2.
+    #[must_use]
+    pub fn area(&self) -> f64 {
+        self.faces(0).iter().map(|w| w.area).sum()
+    }
+
+    /// Whether `x` lies inside the box grown by `r` on every side (its boundary excluded).
+    #[inline]
+    #[must_use]
+    pub fn holds(&self, x: [f64; 3], r: f64) -> bool {
+        (0..3).all(|a| x[a] > self.low[a] - r && x[a] < self.high[a] + r)
+    }
+
+    /// Whether the interiors of two boxes overlap.
+    #[must_use]
+    pub fn overlaps(&self, other: &Furnishing) -> bool {
+        (0..3).all(|a| self.low[a] < other.high[a] && other.low[a] < self.high[a])
+    }
+
+    /// The volume (m^3) the box shares with the box `[low, high]`.
+    #[must_use]
+    pub fn shared_volume(&self, low: [f64; 3], high: [f64; 3]) -> f64 {
+        (0..3).map(|a| (self.high[a].min(high[a]) - self.low[a].max(low[a])).max(0.0)).product()
+    }
+}
+
+/// The orientation of face `f` of a box (module docs): the top faces up, like a floor.
+#[must_use]
+pub fn face_orientation(f: usize) -> Orientation {
+    match f {
+        0 => Orientation::Ceiling,
+        1 => Orientation::Floor,
+        _ => Orientation::Wall,
+    }
+}
+
+/// The free air volume of a room of `size` (m) holding `boxes`, m^3: the room's less the
+/// boxes' (which do not overlap).
+#[must_use]
+pub fn free_volume(size: [f64; 3], boxes: &[Furnishing]) -> f64 {
+    size.iter().product::<f64>() - boxes.iter().map(Furnishing::volume).sum::<f64>()
+}
+
+/// For the velocity component along `axis`, the distance (m) from `x` to the nearest surface
+/// across that axis, and its rate of change along the axis (the sign of the well-mixed
+/// drift): the room's walls at `0` and `length` (`+1` from the lower, `-1` from the upper),
+/// and each box's two faces across `axis`, at their Euclidean distance from `x` (module docs).
+/// In front of a face (`x`'s projection within its rectangle) that is the distance along the
+/// axis; beyond the rectangle's edges it grows smoothly, so that the profile is continuous
+/// across the edge of the box's shadow.
+#[inline]
+#[must_use]
+pub fn axis_distance(x: [f64; 3], axis: usize, length: f64, boxes: &[Furnishing]) -> (f64, f64) {
+    let c = x[axis];
+    let (mut best, mut slope) = if c <= length - c { (c, 1.0) } else { (length - c, -1.0) };
+    let (b, d) = ((axis + 1) % 3, (axis + 2) % 3);
+    let outside = |k: &Furnishing, a: usize| (k.low[a] - x[a]).max(x[a] - k.high[a]).max(0.0);
+    for k in boxes {
+        let lateral = outside(k, b).powi(2) + outside(k, d).powi(2);
+        // The nearer of its two faces across `axis` (the box lies between them).
+        let face = if c <= k.low[axis] {
+            k.low[axis]
+        } else if c >= k.high[axis] {
+            k.high[axis]
+        } else {
+            f64::NAN
+        };
+        let along = if face.is_nan() { 0.0 } else { c - face };
+        // Beside the box (within its extent along `axis`) the faces are edge-on: the nearer
+        // face's edge, `along` 0.
+        let distance = (along * along + lateral).sqrt();
+        if distance < best {
+            best = distance;
+            slope = if distance > 0.0 { along / distance } else { 0.0 };
+        }
+    }
+    (best, slope)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table() -> Furnishing {
+        Furnishing::new([1.0, 1.0, 0.7], [2.0, 1.5, 0.75])
+    }
+
+    #[test]
+    fn faces_are_numbered_as_the_room_walls_and_face_outwards() {
+        let faces = table().faces(1);
+        assert_eq!(faces.map(|w| w.id), [12, 13, 14, 15, 16, 17]);
+        // The top faces up like a floor; its normal points out of the box.
+        assert_eq!(faces[1].normal(), [0.0, 0.0, 1.0]);
+        assert_eq!(faces[1].orientation(), Orientation::Floor);
+        assert_eq!(faces[1].position, 0.75);
+        assert_eq!(faces[0].normal(), [0.0, 0.0, -1.0]);
+        assert_eq!(faces[0].orientation(), Orientation::Ceiling);
+        assert_eq!(faces[2].normal(), [-1.0, 0.0, 0.0]);
+        assert_eq!(faces[2].position, 1.0);
+        assert_eq!(faces[5].normal(), [0.0, 1.0, 0.0]);
+        for (f, face) in faces.iter().enumerate() {
+            assert_eq!(face.orientation(), face_orientation(f));
+        }
+        assert!((faces[1].area - 0.5).abs() < 1e-12);
+        assert!((faces[2].area - 0.5 * 0.05).abs() < 1e-12);
+        assert!((table().area() - 2.0 * (0.5 + 0.05 + 0.025)).abs() < 1e-12);
+        assert_eq!(table().label(2), "box3");
+        assert_eq!(table().named("desk").label(2), "desk");
+    }
+
+    #[test]
+    fn distance_is_to_the_nearest_surface_across_the_axis() {
+        let boxes = [table()];
+        // Above the table: the table top, 5 cm down, is nearer than the ceiling.
+        let (d, sign) = axis_distance([1.5, 1.2, 0.8], 2, 2.5, &boxes);
+        assert!((d - 0.05).abs() < 1e-12 && sign == 1.0);
+        // Under it: the table's bottom, 10 cm up, is nearer than the floor 60 cm down.
+        let (d, sign) = axis_distance([1.5, 1.2, 0.6], 2, 2.5, &boxes);
+        assert!((d - 0.1).abs() < 1e-12 && sign == -1.0);
+        // Beside it, half a metre from its edge: the table top's edge, nearer than the floor,
+        // at its Euclidean distance; the drift's share along z is its cosine.
+        let (d, sign) = axis_distance([0.5, 1.2, 0.8], 2, 2.5, &boxes);
+        let r = (0.05f64 * 0.05 + 0.5 * 0.5).sqrt();
+        assert!((d - r).abs() < 1e-12 && (sign - 0.05 / r).abs() < 1e-12, "{d} {sign}");
+        // Far beside it: the floor.
+        let (d, sign) = axis_distance([3.5, 1.2, 0.8], 2, 2.5, &boxes);
+        assert!((d - 0.8).abs() < 1e-12 && sign == 1.0);
+        // Continuous across the edge of the table's shadow.
+        let inside = axis_distance([1.0 - 1e-9, 1.2, 0.8], 2, 2.5, &boxes).0;
+        assert!((inside - 0.05).abs() < 1e-8);
+        // Level with the table, beside it: its edge.
+        let (d, sign) = axis_distance([0.9, 1.2, 0.72], 2, 2.5, &boxes);
+        assert!((d - 0.1).abs() < 1e-12 && sign == 0.0);
+        // Along x at the table's height: its x0 face, 10 cm on.
+        let (d, sign) = axis_distance([0.9, 1.2, 0.72], 0, 4.0, &boxes);
+        assert!((d - 0.1).abs() < 1e-12 && sign == -1.0);
+        // Without boxes: the nearer wall.
+        assert_eq!(axis_distance([0.9, 1.2, 0.72], 0, 4.0, &[]), (0.9, 1.0));
+    }
+
+    #[test]
+    fn grown_box_holds_what_touches_it() {
+        let t = table();
+        assert!(t.holds([1.5, 1.2, 0.76], 0.02));
+        assert!(!t.holds([1.5, 1.2, 0.76], 0.005));
+        assert!(!t.holds([1.5, 1.2, 0.77], 0.02), "the boundary is outside");
+        assert!(t.overlaps(&Furnishing::new([1.9, 1.4, 0.0], [3.0, 3.0, 0.71])));
+        assert!(!t.overlaps(&Furnishing::new([2.0, 1.0, 0.0], [3.0, 3.0, 1.0])), "touching");
+        assert!((free_volume([4.0, 3.0, 2.5], std::slice::from_ref(&t)) - (30.0 - 0.025)).abs() < 1e-12);
+        assert!((t.shared_volume([0.0; 3], [1.5, 3.0, 3.0]) - 0.0125).abs() < 1e-12);
+    }
+}
