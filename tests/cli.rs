@@ -1076,3 +1076,37 @@ fn distribution_shares_are_of_the_whole_mass_and_a_missed_mode_is_an_error() {
         "missed.toml line 10: the bins hold 0.000 % of the modes' mass, less than the 50 % needed",
     );
 }
+
+/// Filters from a scene file: the supply's share and filter and the recirculation's rate and
+/// filter (an efficiency curve) reach the study: the JSON carries the filter's removal at the
+/// size run (4 per hour through 50 % at 1 um: 2 per hour) and the indoor/outdoor ratio with
+/// both filters (checked against the study's own beta by the formula, by hand); a share out of
+/// range or a decreasing curve is an error naming the key.
+#[test]
+fn room_scene_filters_reach_the_study() {
+    let dir = scratch("room-filters");
+    let scene = dir.join("filtered.toml");
+    let base = "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6]\ncount = 200\ntarget_error = 0.0\n\
+                [run]\ndt = 0.05\nduration = 120.0\n[ventilation]\nair_changes_per_hour = 1.0\npenetration = 0.9\n";
+    std::fs::write(
+        &scene,
+        format!(
+            "{base}supply_share = 0.5\nsupply_filter = 0.8\nrecirculation_per_hour = 4.0\n\
+             recirculation_filter = [[0.3e-6, 0.2], [1e-6, 0.5], [3e-6, 0.9]]\n"
+        ),
+    )
+    .unwrap();
+    let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(report["supply_share"], 0.5);
+    assert_eq!(report["recirculation_per_hour"], 4.0);
+    let one = &report["sizes"][0];
+    assert!((one["filter_removal_per_hour"].as_f64().unwrap() - 2.0).abs() < 1e-9, "{one}");
+    let beta = one["beta_per_hour"]["value"].as_f64().unwrap();
+    let ratio = one["indoor_outdoor"]["value"].as_f64().unwrap();
+    assert!((ratio - (0.9 * 0.5 + 0.2 * 0.5) / (1.0 + 2.0 + beta)).abs() < 1e-9, "{ratio} with beta {beta}");
+    let bad = dir.join("bad-share.toml");
+    std::fs::write(&bad, format!("{base}supply_share = 1.5\n")).unwrap();
+    user_error(&["room", bad.to_str().unwrap()], "ventilation.supply_share");
+    std::fs::write(&bad, format!("{base}recirculation_filter = [[1e-6, 0.5], [0.5e-6, 0.6]]\n")).unwrap();
+    user_error(&["room", bad.to_str().unwrap()], "ventilation.recirculation_filter");
+}

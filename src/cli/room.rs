@@ -135,9 +135,13 @@ struct Row {
     ceiling: Measured,
     walls: Measured,
     beta_per_hour: Measured,
-    /// With ventilation: the steady indoor/outdoor ratio `P a / (a + beta)`.
+    /// With ventilation: the steady indoor/outdoor ratio `P a / (a + beta)` (with filters,
+    /// `(P (1 - s) a + (1 - eta_s) s a) / (a + eta_r a_r + beta)`).
     #[serde(skip_serializing_if = "Option::is_none")]
     indoor_outdoor: Option<Measured>,
+    /// The recirculation filter's removal `eta_r a_r` at this size, 1/h (with one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    filter_removal_per_hour: Option<f64>,
     lai_nazaroff: Model,
     particle_steps: u64,
     /// Particles run for this size.
@@ -300,6 +304,10 @@ struct Report<'a> {
     friction_velocity: f64,
     air_changes_per_hour: f64,
     penetration: f64,
+    /// Share of the air exchange through the filtered supply.
+    supply_share: f64,
+    /// Recirculation through its filter, room volumes per hour.
+    recirculation_per_hour: f64,
     particles_per_size: usize,
     /// With a target: the relative standard error each size was run to reach, and the most
     /// particles it could take.
@@ -334,6 +342,7 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
         walls,
         beta_per_hour: per_hour(p.beta),
         indoor_outdoor: p.indoor_outdoor.map(Measured::from),
+        filter_removal_per_hour: (p.filter_removal > 0.0).then_some(p.filter_removal * 3600.0),
         lai_nazaroff: Model {
             floor: p.model.floor,
             ceiling: p.model.ceiling,
@@ -454,6 +463,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 friction_velocity: u_star,
                 air_changes_per_hour: study.scene.air_exchange * 3600.0,
                 penetration: study.penetration,
+                supply_share: study.filtration.supply_share,
+                recirculation_per_hour: study.filtration.recirculation * 3600.0,
                 particles_per_size: study.count,
                 target_error: study.target_error,
                 max_particles_per_size: study.max_count,
@@ -590,6 +601,20 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     "Ventilated: {} air changes per hour, penetration {}; C_in/C_out = P a / (a + beta) at steady state.",
                     study.scene.air_exchange * 3600.0,
                     study.penetration
+                );
+            }
+            let f = &study.filtration;
+            if f.supply_share > 0.0 || f.recirculation > 0.0 {
+                out!(
+                    "Filters: a share {} of the exchange through the supply filter, recirculation {} per hour through its \
+                     filter (its removal eta_r a_r, added to the exhaust: {} per hour at the sizes run); \
+                     C_in/C_out = (P (1 - s) a + (1 - eta_s) s a) / (a + eta_r a_r + beta).",
+                    f.supply_share,
+                    f.recirculation * 3600.0,
+                    rows.iter()
+                        .map(|r| format!("{:.3}", r.filter_removal_per_hour.unwrap_or(0.0)))
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 );
             }
             out!(

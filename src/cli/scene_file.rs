@@ -6,6 +6,7 @@ use std::path::Path;
 
 use depo::tracker::air::STANDARD_GRAVITY;
 use depo::tracker::distribution::{Amount, Distribution, Median, Mode, Quantity, SizeClass, DEFAULT_BINS};
+use depo::tracker::filtration::FilterEfficiency;
 use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
 use depo::tracker::{Air, Drag, Flow, Furnishing, Geometry, Scene, WallBehaviour};
@@ -128,6 +129,28 @@ struct ModeFile {
 struct VentilationFile {
     air_changes_per_hour: Option<f64>,
     penetration: Option<f64>,
+    supply_share: Option<f64>,
+    supply_filter: Option<EfficiencyFile>,
+    recirculation_per_hour: Option<f64>,
+    recirculation_filter: Option<EfficiencyFile>,
+}
+
+/// A filter's efficiency in a scene: one number for every size, or `[diameter m, efficiency]`
+/// pairs.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum EfficiencyFile {
+    One(f64),
+    Curve(Vec<[f64; 2]>),
+}
+
+/// The filter of `key` in `path` as [`FilterEfficiency`], or an error naming the key.
+fn filter_efficiency(path: &Path, key: &str, file: &EfficiencyFile) -> Result<FilterEfficiency, Error> {
+    let curve = match file {
+        EfficiencyFile::One(eta) => FilterEfficiency::constant(*eta),
+        EfficiencyFile::Curve(points) => FilterEfficiency::new(points.iter().map(|&[d, eta]| (d, eta)).collect()),
+    };
+    curve.map_err(|e| format!("{}: `ventilation.{key}`: {} = {} {}", path.display(), e.field, e.value, e.requirement))
 }
 
 /// One `[[furnishings]]` entry: a box and its faces' behaviour (the keys of a `[walls.*]`
@@ -471,6 +494,28 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
             return Err(format!("{}: `ventilation.penetration` = {p} must be in [0, 1]", path.display()));
         }
         study.penetration = p;
+    }
+    let ventilation = &file.ventilation;
+    if let Some(share) = ventilation.supply_share {
+        if !(0.0..=1.0).contains(&share) {
+            return Err(format!("{}: `ventilation.supply_share` = {share} must be in [0, 1]", path.display()));
+        }
+        study.filtration.supply_share = share;
+    }
+    if let Some(filter) = &ventilation.supply_filter {
+        study.filtration.supply_filter = filter_efficiency(path, "supply_filter", filter)?;
+    }
+    if let Some(rate) = ventilation.recirculation_per_hour {
+        if !(rate.is_finite() && rate >= 0.0) {
+            return Err(format!(
+                "{}: `ventilation.recirculation_per_hour` = {rate} must be finite and not negative",
+                path.display()
+            ));
+        }
+        study.filtration.recirculation = rate / 3600.0;
+    }
+    if let Some(filter) = &ventilation.recirculation_filter {
+        study.filtration.recirculation_filter = filter_efficiency(path, "recirculation_filter", filter)?;
     }
     check_count(path, "particles.count", study.count)?;
     if study.target_error.is_some() {

@@ -57,6 +57,7 @@ pub mod correlations;
 pub mod decay;
 pub mod distribution;
 pub mod excursions;
+pub mod filtration;
 pub mod flow;
 pub mod furnishing;
 pub mod geometry;

@@ -21,6 +21,7 @@ use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
 use crate::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
 use crate::excursions::Excursions;
+use crate::filtration::Filtration;
 use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
 use crate::run::{run, run_more, Balance, Estimate, Run};
@@ -55,6 +56,10 @@ pub struct RoomStudy {
     /// (1 by default): with ventilation ([`Scene::air_exchange`]) it sets the steady
     /// indoor/outdoor ratio [`RoomPoint::indoor_outdoor`].
     pub penetration: f64,
+    /// A filtered supply and recirculation ([`crate::filtration`]): the recirculation filter
+    /// adds its removal `eta_r(d) a_r` to each size's exhaust, and the indoor/outdoor ratio
+    /// takes both filters. The default has neither.
+    pub filtration: Filtration,
 }
 
 /// Excursions per inward crossing in the studies: more than one, as each crossing's
@@ -122,6 +127,7 @@ impl Default for RoomStudy {
             transient: 0.1,
             excursions: true,
             penetration: 1.0,
+            filtration: Filtration::default(),
         }
     }
 }
@@ -152,8 +158,12 @@ pub struct RoomPoint {
     pub excursions: Option<f64>,
     /// With ventilation (air-exchange rate `a > 0`), the steady indoor/outdoor concentration
     /// ratio of outdoor particles, `C_in / C_out = P a / (a + beta)` (the well-mixed room's
-    /// mass balance with penetration `P`), its error carried from `beta`'s.
+    /// mass balance with penetration `P`; with filters [`Filtration::indoor_outdoor`]), its
+    /// error carried from `beta`'s.
     pub indoor_outdoor: Option<Estimate>,
+    /// The recirculation filter's removal rate `eta_r(d) a_r` at this size, 1/s (0 without
+    /// one), which the run's exhaust included.
+    pub filter_removal: f64,
     /// The wall-law tallies summed over all surfaces.
     pub tally: WallTally,
     /// Deposition maps, one per surface in id order (floor, ceiling, x0, x1, y0, y1, then the
@@ -247,6 +257,7 @@ impl RoomStudy {
         if !(0.0..=1.0).contains(&self.penetration) {
             return Err(SceneError::new("penetration", self.penetration, "must be in [0, 1]"));
         }
+        self.filtration.validate()?;
         let u_star = self.scene.flow.friction_velocity().unwrap_or(0.0);
         let g = self.scene.gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
         let size = self.scene.geometry.size();
@@ -255,6 +266,7 @@ impl RoomStudy {
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let mut scene = self.scene.clone();
             scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
+            scene.air_exchange += self.filtration.removal(d);
             if self.excursions {
                 // Down to 0.05 wall units (75 um at u* = 1 cm/s), inside the Brownian sublayer
                 // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
@@ -273,18 +285,22 @@ impl RoomStudy {
             let v = |o| result.deposition_velocity(&result.walls_facing(o));
             let balance = result.balance();
             let beta = result.loss_rate();
-            let a = scene.air_exchange;
+            // The outdoor air exchange; the scene's exhaust adds the recirculation filter's
+            // removal to it, and the decay fit takes both off.
+            let a = self.scene.air_exchange;
+            let f = &self.filtration;
             let indoor_outdoor = (a > 0.0).then(|| {
-                let ratio = self.penetration * a / (a + beta.value);
+                let ratio = f.indoor_outdoor(d, a, self.penetration, beta.value);
+                let slope = f.indoor_outdoor_slope(d, a, self.penetration, beta.value).abs();
                 Estimate {
                     value: ratio,
-                    error: ratio / (a + beta.value) * beta.error,
+                    error: slope * beta.error,
                     events: beta.events,
-                    upper_bound: (ratio + 2.0 * ratio / (a + beta.value) * beta.error).min(self.penetration),
+                    upper_bound: (ratio + 2.0 * slope * beta.error).min(f.indoor_outdoor(d, a, self.penetration, 0.0)),
                 }
             });
             let decay = result.decay_curve(DECAY_INTERVALS);
-            let decay_fit = result.decay_fit(&decay, a);
+            let decay_fit = result.decay_fit(&decay, scene.air_exchange);
             points.push(RoomPoint {
                 diameter: d,
                 floor: v(Orientation::Floor),
@@ -292,6 +308,7 @@ impl RoomStudy {
                 walls: v(Orientation::Wall),
                 beta,
                 indoor_outdoor,
+                filter_removal: f.removal(d),
                 model,
                 model_beta: model.loss_rate(size),
                 particle_steps: result.particle_steps(),

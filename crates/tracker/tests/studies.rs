@@ -216,3 +216,46 @@ fn a_room_study_runs_more_particles_to_reach_its_target_error() {
     assert_eq!(first.particles, 100);
     assert!(first.floor.error / first.floor.value > point.floor.error / point.floor.value);
 }
+
+/// A recirculation filter removes particles at `eta_r(d) a_r` as the exhaust does at `a`: in a
+/// room of mirror walls (no deposition, no settling) with 0.5 air changes per hour and 4 per hour through a
+/// filter of 50 % at 1 um, the decay falls at 0.5 + 2 = 2.5 per hour (within 3 standard errors);
+/// the indoor/outdoor ratio with half the exchange through an 80 % supply filter and `P = 0.9`
+/// is, by hand, `(0.9 x 0.5 + 0.2 x 0.5) 0.5 / (2.5 + beta)` with the study's own (zero) `beta`.
+#[test]
+fn a_recirculation_filter_adds_its_removal_to_the_exhaust() {
+    use depo_tracker::filtration::{FilterEfficiency, Filtration};
+    use depo_tracker::WallBehaviour;
+    let h = 1.0 / 3600.0;
+    let mut study = RoomStudy {
+        diameters: vec![1e-6],
+        count: 2000,
+        target_error: None,
+        excursions: false,
+        penetration: 0.9,
+        ..RoomStudy::default()
+    };
+    // Mirror walls, and no settling or Brownian motion to pin a particle at a wall (one still
+    // bouncing after many contacts in a step counts as come to rest there).
+    study.scene = study.scene.with_walls(WallBehaviour::Reflect);
+    study.scene.gravity = [0.0; 3];
+    study.scene.brownian = false;
+    study.scene.duration = 1800.0;
+    study.scene.air_exchange = 0.5 * h;
+    study.filtration = Filtration {
+        supply_share: 0.5,
+        supply_filter: FilterEfficiency::constant(0.8).unwrap(),
+        recirculation: 4.0 * h,
+        recirculation_filter: FilterEfficiency::new(vec![(0.3e-6, 0.2), (1e-6, 0.5), (3e-6, 0.9)]).unwrap(),
+    };
+    let point = &study.run(|_| {}).unwrap()[0];
+    assert_eq!(point.beta.value, 0.0, "mirror walls take nothing: {:?} {:?}", point.deposited, point.balance);
+    assert!((point.filter_removal - 2.0 * h).abs() < 1e-15);
+    let fit = point.decay_fit.expect("a fit");
+    let z = (fit.total.value - 2.5 * h) / fit.total.error;
+    assert!(z.abs() < 3.0, "decay {} /h against 2.5 /h (z = {z})", fit.total.value / h);
+    let ratio = point.indoor_outdoor.expect("ventilated").value;
+    assert!((ratio - (0.9 * 0.5 + 0.2 * 0.5) * 0.5 / 2.5).abs() < 1e-12, "{ratio}");
+    // Without the filter's removal in the exhaust the decay would be 0.5 /h: 5 times slower.
+    assert!(fit.total.value > 2.0 * h);
+}
