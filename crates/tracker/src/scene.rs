@@ -319,6 +319,13 @@ impl Scene {
                 median * geometric_sd.powi(5)
             }
         };
+        if largest > LARGEST_PARTICLE {
+            return Err(SceneError::new(
+                "particles.diameter",
+                largest,
+                "must be at most 1 mm, an airborne particle (Schiller-Naumann's drag holds to Re_p ~ 800)",
+            ));
+        }
         let smallest = size.iter().copied().fold(f64::INFINITY, f64::min);
         if largest >= 0.5 * smallest {
             return Err(SceneError::new("particles.diameter", largest, "must be smaller than half the domain"));
@@ -420,6 +427,12 @@ fn positive(field: &str, v: f64) -> Result<(), SceneError> {
         Err(SceneError::new(field, v, "must be finite and positive"))
     }
 }
+
+/// The largest particle a scene takes, m: a 1 mm sphere of unit density falls at about 4 m/s
+/// in air (particle Reynolds number about 270), within the range of Schiller & Naumann's drag
+/// (to about 800; Clift, Grace & Weber 1978); a larger one is an object, not an aerosol, and a
+/// diameter given in the wrong unit (1 for 1 um) is caught here rather than run.
+pub const LARGEST_PARTICLE: f64 = 1e-3;
 
 /// A scene value out of range.
 #[derive(Clone, Debug, PartialEq)]

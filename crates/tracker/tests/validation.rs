@@ -254,6 +254,13 @@ fn scene_errors_name_the_field() {
     assert_eq!(run(&scene, &particles).unwrap_err().field, "flow");
     scene.flow = Flow::Still;
     assert_eq!(run(&scene, &mono(10, 0.6)).unwrap_err().field, "particles.diameter");
+    // A diameter in the wrong unit (1 for 1 um) in a room big enough for it: an error, not a
+    // run of a 1 m ball.
+    let big = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.01, 1.0);
+    let err = run(&big, &mono(10, 1.0)).unwrap_err();
+    assert_eq!(err.field, "particles.diameter");
+    assert!(err.to_string().contains("at most 1 mm"), "{err}");
+    assert!(run(&big, &mono(10, 1e-3)).is_ok());
     assert_eq!(run(&scene, &mono(0, 1e-6)).unwrap_err().field, "particles.count");
     let err = run(&scene, &mono(10, 1e-6).with_velocity([f64::NAN, 0.0, 0.0])).unwrap_err();
     assert_eq!(err.field, "particles.velocity");
