@@ -37,6 +37,12 @@ impl FilterEfficiency {
         Self::new(vec![(1e-6, efficiency)])
     }
 
+    /// No filter: efficiency 0 at every size.
+    #[must_use]
+    pub fn none() -> Self {
+        Self { points: vec![(1e-6, 0.0)] }
+    }
+
     /// The curve through `points`: diameters positive, finite and increasing, efficiencies in
     /// `[0, 1]`, at least one point.
     pub fn new(points: Vec<(f64, f64)>) -> Result<Self, SceneError> {
@@ -87,8 +93,12 @@ pub struct Filtration {
 impl Default for Filtration {
     /// No supply share, no recirculation, no filter: infiltration alone.
     fn default() -> Self {
-        let none = FilterEfficiency { points: vec![(1e-6, 0.0)] };
-        Self { supply_share: 0.0, supply_filter: none.clone(), recirculation: 0.0, recirculation_filter: none }
+        Self {
+            supply_share: 0.0,
+            supply_filter: FilterEfficiency::none(),
+            recirculation: 0.0,
+            recirculation_filter: FilterEfficiency::none(),
+        }
     }
 }
 
