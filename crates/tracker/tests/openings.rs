@@ -24,13 +24,12 @@ fn stirred_room(q: f64) -> Scene {
 /// Tracers between mirrors in a well-mixed room leave through the exhaust alone, and the
 /// airborne number decays at the exchange rate `Q / V` (here 0.0025 1/s, 9 air changes an
 /// hour, so that the run is short), within three standard errors of the decay fit (2.2 %):
-/// so neither `2 Q / V` nor no exhaust would pass. The room is well mixed to a few per cent
-/// only: at 8000 particles the rate was 0.975 +- 0.016 times `Q / V` with the openings at the
-/// two ends of the ceiling (some supply air short-circuits to the exhaust; 0.943 +- 0.015 at
-/// 0.01 1/s), and 1.039 +- 0.017 with the supply high on one wall and the exhaust low on the
-/// opposite one (it displaces the room's air towards the exhaust), the same at half and a
-/// quarter of the time step: the mixing, not the step. A room stirred less is mixed less
-/// (see `depo_tracker::openings`).
+/// so neither `2 Q / V` nor no exhaust would pass (here 0.995 +- 0.022 times `Q / V`). The
+/// room is well mixed to a few per cent: at 8000 particles the rate was 0.990 +- 0.016 times
+/// `Q / V` with the openings at the two ends of the ceiling, and 1.036 +- 0.017 with the
+/// supply high on one wall and the exhaust low on the opposite one (it displaces the room's
+/// air towards the exhaust). A room stirred less is mixed less (see `depo_tracker::openings`
+/// and docs/tracker.md).
 #[test]
 fn the_airborne_number_decays_at_the_exchange_rate() {
     let q = 0.0025;
