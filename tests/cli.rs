@@ -702,6 +702,72 @@ fn furnishing_errors_name_the_file_line_and_key() {
     user_error(&["room", missing.to_str().unwrap(), "--no-plot"], "missing field `high`");
 }
 
+/// A room ventilated through openings from a scene file (the example's, uncommented): the
+/// exchange rate is the exhaust flow over the air's volume, particles are exhausted, and the
+/// release balances exactly.
+#[test]
+fn room_with_openings() {
+    let dir = scratch("openings");
+    let scene = dir.join("room.toml");
+    let example = std::fs::read_to_string("examples/room.toml").unwrap();
+    let from = example.find("# [[openings]]").unwrap();
+    let to = from + example[from..].find("\n\n[run]").unwrap();
+    let openings: String =
+        example[from..to].lines().map(|l| l.strip_prefix("# ").unwrap_or("")).collect::<Vec<_>>().join("\n");
+    std::fs::write(
+        &scene,
+        format!(
+            "[particles]\ndiameters = [1e-6]\ncount = 300\ntarget_error = 0.0\n\
+             [run]\nduration = 600.0\nexcursions = false\n{openings}\n"
+        ),
+    )
+    .unwrap();
+    let json = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    assert!((json["air_changes_per_hour"].as_f64().unwrap() - 2.0).abs() < 1e-12, "{}", json["air_changes_per_hour"]);
+    let release = &json["sizes"][0]["release"];
+    let count = |k: &str| release[k]["count"].as_u64().unwrap();
+    assert!(count("exhausted") > 0, "{release}");
+    assert_eq!(
+        count("floor") + count("ceiling") + count("walls") + count("exhausted") + count("airborne"),
+        release["particles"].as_u64().unwrap()
+    );
+}
+
+/// Openings in a scene file are checked with the file, line and key.
+#[test]
+fn opening_errors_name_the_file_line_and_key() {
+    let dir = scratch("opening-errors");
+    let run = |name: &str, text: &str, what: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        user_error(&["room", path.to_str().unwrap(), "--no-plot"], what);
+    };
+    let supply = "[[openings]]\nkind = \"supply\"\nwall = \"ceiling\"\ncenter = [1.0, 1.5]\nsize = [0.6, 0.6]\nflow_m3_per_hour = 60.0\n";
+    let exhaust = |wall: &str, center: &str, flow: f64| {
+        format!("[[openings]]\nkind = \"exhaust\"\nwall = \"{wall}\"\ncenter = {center}\nsize = [0.5, 0.3]\nflow_m3_per_hour = {flow:?}\n")
+    };
+    run("kind.toml", &supply.replace("supply", "intake"), "line 2: `openings[0].kind` = \"intake\"");
+    run("wall.toml", &supply.replace("ceiling", "roof"), "line 3: `openings[0].wall` = \"roof\"");
+    // x1's in-plane coordinates are y (3 m) and z (2.5 m): 0.3 m tall at z = 2.4 sticks out.
+    run(
+        "off.toml",
+        &format!("{supply}{}", exhaust("x1", "[1.5, 2.4]", 60.0)),
+        "line 10: `openings[1].center` = 2.4 must keep the opening",
+    );
+    run(
+        "unbalanced.toml",
+        &format!("{supply}{}", exhaust("x1", "[1.5, 0.3]", 50.0)),
+        "line 1: `openings`: the supply flows (60 m^3/h) must sum to the exhaust flows (50 m^3/h)",
+    );
+    run("flow.toml", &supply.replace("60.0", "-1.0"), "line 6: `openings[0].flow_m3_per_hour` = -1 must be finite");
+    run(
+        "ach.toml",
+        &format!("[ventilation]\nair_changes_per_hour = 1.0\n{supply}{}", exhaust("x1", "[1.5, 0.3]", 60.0)),
+        "`ventilation.air_changes_per_hour` = 1 must be 0 with `[[openings]]`",
+    );
+    run("unknown.toml", &supply.replace("flow_m3_per_hour", "flow"), "line 6: unknown field `flow`");
+}
+
 #[test]
 fn example_scene_files_parse() {
     // Parsing only: zero-duration runs of the shipped examples, so every documented key is known.

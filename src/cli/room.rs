@@ -454,14 +454,14 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
     // Each run's density: the bins' with a size distribution (in the points' order).
     let density = |i: usize| distribution.as_ref().map_or(study.density, |d| d.bins[i].density);
     let rows: Vec<Row> = points.iter().enumerate().map(|(i, p)| row(p, size, density(i))).collect();
-    let ventilated = study.scene.air_exchange > 0.0;
+    let ventilated = study.scene.exchange_rate() > 0.0;
     let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();
     match args.format {
         Format::Json => {
             let report = Report {
                 size_m: size,
                 friction_velocity: u_star,
-                air_changes_per_hour: study.scene.air_exchange * 3600.0,
+                air_changes_per_hour: study.scene.exchange_rate() * 3600.0,
                 penetration: study.penetration,
                 supply_share: study.filtration.supply_share,
                 recirculation_per_hour: study.filtration.recirculation * 3600.0,
@@ -599,8 +599,15 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             if ventilated {
                 out!(
                     "Ventilated: {} air changes per hour, penetration {}; C_in/C_out = P a / (a + beta) at steady state.",
-                    study.scene.air_exchange * 3600.0,
+                    study.scene.exchange_rate() * 3600.0,
                     study.penetration
+                );
+            }
+            if !study.scene.openings.is_empty() {
+                out!(
+                    "Through {} openings: air and particles from the supply to the exhaust in a potential flow; \
+                     particles leave at the exhaust (a = exhaust flow / air volume).",
+                    study.scene.openings.len()
                 );
             }
             let f = &study.filtration;
@@ -675,7 +682,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 study.transient * study.scene.duration,
                 study.scene.duration
             );
-            decay_table(&rows, study.scene.air_exchange * 3600.0);
+            decay_table(&rows, study.scene.exchange_rate() * 3600.0);
         }
     }
     if let (Format::Table, Some(d)) = (args.format, &distribution) {
@@ -959,7 +966,7 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
         }
     }
     // What ventilation alone would leave, for reference.
-    let a = study.scene.air_exchange;
+    let a = study.scene.exchange_rate();
     if a > 0.0 {
         let end = study.scene.duration;
         series.push(

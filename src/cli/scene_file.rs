@@ -8,8 +8,9 @@ use depo::tracker::air::STANDARD_GRAVITY;
 use depo::tracker::distribution::{Amount, Distribution, Median, Mode, Quantity, SizeClass, DEFAULT_BINS};
 use depo::tracker::filtration::FilterEfficiency;
 use depo::tracker::furnishing::FACE_NAMES;
+use depo::tracker::openings;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
-use depo::tracker::{Air, Drag, Flow, Furnishing, Geometry, Scene, WallBehaviour};
+use depo::tracker::{Air, Drag, Flow, Furnishing, Geometry, Opening, OpeningKind, Scene, WallBehaviour};
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
 use toml::Spanned;
@@ -170,11 +171,29 @@ struct FurnishingFile {
     y1: Option<WallFile>,
 }
 
+/// One `[[openings]]` entry: a supply or exhaust opening on a room wall.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct OpeningFile {
+    /// "supply" or "exhaust".
+    kind: Spanned<String>,
+    /// A wall's name: floor, ceiling, x0, x1, y0, y1.
+    wall: Spanned<String>,
+    /// Centre in the wall's two in-plane coordinates, in the order x, y, z (m).
+    center: Spanned<[f64; 2]>,
+    /// Extent along the same coordinates (m).
+    size: Spanned<[f64; 2]>,
+    /// Volume flow through it, m^3/h.
+    flow_m3_per_hour: Spanned<f64>,
+}
+
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct RoomFile {
     #[serde(default)]
     furnishings: Vec<Spanned<FurnishingFile>>,
+    #[serde(default)]
+    openings: Vec<Spanned<OpeningFile>>,
     #[serde(default)]
     room: RoomSection,
     #[serde(default)]
@@ -409,6 +428,76 @@ fn furnishings(
     Ok(boxes)
 }
 
+/// The `[[openings]]` of a room `geometry`, checked (each within its wall, none overlapping
+/// another, supply and exhaust flows balanced); errors name the file, the line and the key.
+fn openings(
+    path: &Path,
+    text: &str,
+    entries: &[Spanned<OpeningFile>],
+    geometry: &Geometry,
+) -> Result<Vec<Opening>, Error> {
+    let at = |offset: usize, message: String| format!("{} line {}: {message}", path.display(), line_of(text, offset));
+    let walls = geometry.walls();
+    let mut parsed = Vec::new();
+    for (k, entry) in entries.iter().enumerate() {
+        let o = entry.get_ref();
+        let kind = match o.kind.get_ref().as_str() {
+            "supply" => OpeningKind::Supply,
+            "exhaust" => OpeningKind::Exhaust,
+            other => {
+                return Err(at(
+                    o.kind.span().start,
+                    format!("`openings[{k}].kind` = \"{other}\": expected \"supply\" or \"exhaust\""),
+                ))
+            }
+        };
+        let name = o.wall.get_ref();
+        let Some(wall) = walls.iter().find(|w| w.name(geometry) == name) else {
+            return Err(at(
+                o.wall.span().start,
+                format!("`openings[{k}].wall` = \"{name}\": expected floor, ceiling, x0, x1, y0 or y1"),
+            ));
+        };
+        let flow = *o.flow_m3_per_hour.get_ref() / 3600.0;
+        parsed.push(Opening { kind, wall: wall.id, center: *o.center.get_ref(), size: *o.size.get_ref(), flow });
+    }
+    openings::validate(&parsed, geometry).map_err(|e| {
+        // The entry and the key the error names, in the file's terms.
+        let index: Option<usize> =
+            e.field.strip_prefix("openings[").and_then(|rest| rest.split(']').next()).and_then(|i| i.parse().ok());
+        match index {
+            Some(k) => {
+                let o = entries[k].get_ref();
+                let key = e.field.rsplit('.').next().unwrap_or("");
+                let (offset, key, value) = match key {
+                    "flow" => (o.flow_m3_per_hour.span().start, "flow_m3_per_hour", e.value * 3600.0),
+                    "size" => (o.size.span().start, "size", e.value),
+                    "center" => (o.center.span().start, "center", e.value),
+                    _ => (entries[k].span().start, key, e.value),
+                };
+                at(offset, format!("`openings[{k}].{key}` = {value} {}", e.requirement))
+            }
+            None => {
+                let offset = entries.first().map_or(0, |e| e.span().start);
+                if e.requirement.starts_with("must balance") {
+                    let (supply, exhaust) = (openings::supply_flow(&parsed), openings::exhaust_flow(&parsed));
+                    at(
+                        offset,
+                        format!(
+                            "`openings`: the supply flows ({} m^3/h) must sum to the exhaust flows ({} m^3/h)",
+                            supply * 3600.0,
+                            exhaust * 3600.0
+                        ),
+                    )
+                } else {
+                    at(offset, format!("`openings` {}", e.requirement))
+                }
+            }
+        }
+    })?;
+    Ok(parsed)
+}
+
 fn gravity(g: f64) -> [f64; 3] {
     [0.0, 0.0, -g]
 }
@@ -465,6 +554,7 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     }
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
     scene.furnishings = furnishings(path, &text, &file.furnishings, scene.geometry.size())?;
+    scene.openings = openings(path, &text, &file.openings, &scene.geometry)?;
     set(&mut study.transient, file.run.transient);
     check_transient(path, study.transient)?;
     set(&mut study.diameters, file.particles.diameters.clone());
@@ -484,6 +574,12 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
         if !(ach.is_finite() && ach >= 0.0) {
             return Err(format!(
                 "{}: `ventilation.air_changes_per_hour` = {ach} must be finite and not negative",
+                path.display()
+            ));
+        }
+        if ach > 0.0 && !scene.openings.is_empty() {
+            return Err(format!(
+                "{}: `ventilation.air_changes_per_hour` = {ach} must be 0 with `[[openings]]`: their exhaust flow sets it",
                 path.display()
             ));
         }
@@ -509,6 +605,12 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
         if !(rate.is_finite() && rate >= 0.0) {
             return Err(format!(
                 "{}: `ventilation.recirculation_per_hour` = {rate} must be finite and not negative",
+                path.display()
+            ));
+        }
+        if rate > 0.0 && !scene.openings.is_empty() {
+            return Err(format!(
+                "{}: `ventilation.recirculation_per_hour` = {rate} must be 0 with `[[openings]]` (not modelled beside them)",
                 path.display()
             ));
         }

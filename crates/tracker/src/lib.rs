@@ -13,6 +13,8 @@
 //!   near-wall stochastic dispersion model, tabulated once per run.
 //! - [`furnishing`]: solid boxes inside a room (tables, shelves), each face a surface with
 //!   its own wall behaviour and tally.
+//! - [`openings`]: supply and exhaust openings on a room's walls, and the potential flow
+//!   between them that carries air and particles from the supply to the exhaust.
 //! - [`scene`]: a whole run's setup: walls (sink, mirror or wall law), forces, integrator, time
 //!   step, injection; validated once.
 //! - `noise` (internal): each particle's random streams and its standard normal variates,
@@ -62,6 +64,7 @@ pub mod flow;
 pub mod furnishing;
 pub mod geometry;
 mod noise;
+pub mod openings;
 pub mod run;
 pub mod scene;
 pub mod studies;
@@ -73,6 +76,7 @@ pub use excursions::{Excursions, Splitting};
 pub use flow::Flow;
 pub use furnishing::Furnishing;
 pub use geometry::{Geometry, Orientation, Wall};
+pub use openings::{Opening, OpeningKind};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Estimate, Run};
 pub use scene::{Drag, Injection, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 pub use track::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};

@@ -10,6 +10,7 @@ use crate::excursions::Excursions;
 use crate::flow::Flow;
 use crate::furnishing::{free_volume, Furnishing, FACE_NAMES, ROOM_SURFACES};
 use crate::geometry::{Geometry, Wall};
+use crate::openings::{self, Opening};
 
 /// What a wall does with a particle that touches it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -137,7 +138,14 @@ pub struct Scene {
     /// room). Ventilation takes air from the well-mixed room: each airborne particle is
     /// exhausted at a rate `a`, wherever it is, so that without deposition the airborne
     /// number falls as `exp(-a t)`, exactly at the ends of steps (see [`mod@crate::run`]).
+    /// Must be 0 with [`Scene::openings`], whose flows set the exchange rate
+    /// ([`Scene::exchange_rate`]).
     pub air_exchange: f64,
+    /// Supply and exhaust openings on a room's walls (see [`crate::openings`]); none by
+    /// default. With openings, air comes in through the supply openings and leaves, with the
+    /// particles it carries there, through the exhaust openings, in a potential flow between
+    /// them; the uniform exhaust of [`Scene::air_exchange`] is then off.
+    pub openings: Vec<Opening>,
     /// Solid boxes inside a room, each face a surface of its own (see [`crate::furnishing`]);
     /// none by default. They may not overlap and must lie strictly inside the room.
     pub furnishings: Vec<Furnishing>,
@@ -166,6 +174,7 @@ impl Scene {
             average_from: 0.0,
             excursions: None,
             air_exchange: 0.0,
+            openings: Vec::new(),
             furnishings: Vec::new(),
         }
     }
@@ -210,6 +219,17 @@ impl Scene {
     #[must_use]
     pub fn free_volume(&self) -> f64 {
         free_volume(self.geometry.size(), &self.furnishings)
+    }
+
+    /// The air-exchange rate, 1/s: the exhaust openings' total flow over the air's volume
+    /// with [`Scene::openings`], [`Scene::air_exchange`] without them.
+    #[must_use]
+    pub fn exchange_rate(&self) -> f64 {
+        if self.openings.is_empty() {
+            self.air_exchange
+        } else {
+            openings::exhaust_flow(&self.openings) / self.free_volume()
+        }
     }
 
     /// All surfaces' area (walls and furnishing faces) over the free air volume, 1/m.
@@ -263,6 +283,14 @@ impl Scene {
         }
         if !(self.air_exchange.is_finite() && self.air_exchange >= 0.0) {
             return Err(SceneError::new("air_exchange", self.air_exchange, "must be finite and not negative"));
+        }
+        openings::validate(&self.openings, &self.geometry)?;
+        if !self.openings.is_empty() && self.air_exchange != 0.0 {
+            return Err(SceneError::new(
+                "air_exchange",
+                self.air_exchange,
+                "must be 0 with openings: their exhaust flow sets the exchange rate",
+            ));
         }
         if self.walls.len() != self.geometry.walls().len() {
             return Err(SceneError::new("walls", self.walls.len() as f64, "must give one behaviour per wall"));

@@ -53,7 +53,7 @@ pub struct RoomStudy {
     /// Count deposits by near-wall excursions (the default) rather than plain tracking.
     pub excursions: bool,
     /// Penetration factor `P` of outdoor particles through the building envelope, in `[0, 1]`
-    /// (1 by default): with ventilation ([`Scene::air_exchange`]) it sets the steady
+    /// (1 by default): with ventilation ([`Scene::exchange_rate`]) it sets the steady
     /// indoor/outdoor ratio [`RoomPoint::indoor_outdoor`].
     pub penetration: f64,
     /// A filtered supply and recirculation ([`crate::filtration`]): the recirculation filter
@@ -258,6 +258,15 @@ impl RoomStudy {
             return Err(SceneError::new("penetration", self.penetration, "must be in [0, 1]"));
         }
         self.filtration.validate()?;
+        if !self.scene.openings.is_empty() && self.filtration.recirculation > 0.0 {
+            // Its removal acts wherever particles are, as the uniform exhaust does, which
+            // openings replace.
+            return Err(SceneError::new(
+                "recirculation",
+                self.filtration.recirculation,
+                "must be 0 with openings: a recirculation filter is not modelled beside them",
+            ));
+        }
         let u_star = self.scene.flow.friction_velocity().unwrap_or(0.0);
         let g = self.scene.gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
         let size = self.scene.geometry.size();
@@ -285,9 +294,9 @@ impl RoomStudy {
             let v = |o| result.deposition_velocity(&result.walls_facing(o));
             let balance = result.balance();
             let beta = result.loss_rate();
-            // The outdoor air exchange; the scene's exhaust adds the recirculation filter's
-            // removal to it, and the decay fit takes both off.
-            let a = self.scene.air_exchange;
+            // The outdoor air exchange (the openings' with openings); the scene's exhaust adds
+            // the recirculation filter's removal to it, and the decay fit takes both off.
+            let a = self.scene.exchange_rate();
             let f = &self.filtration;
             let indoor_outdoor = (a > 0.0).then(|| {
                 let ratio = f.indoor_outdoor(d, a, self.penetration, beta.value);
@@ -300,7 +309,7 @@ impl RoomStudy {
                 }
             });
             let decay = result.decay_curve(DECAY_INTERVALS);
-            let decay_fit = result.decay_fit(&decay, scene.air_exchange);
+            let decay_fit = result.decay_fit(&decay, scene.exchange_rate());
             points.push(RoomPoint {
                 diameter: d,
                 floor: v(Orientation::Floor),

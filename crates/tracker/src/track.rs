@@ -66,6 +66,7 @@ use crate::flow::FlowField;
 use crate::furnishing::Furnishing;
 use crate::geometry::Wall;
 use crate::noise::{particle_rng, Normals};
+use crate::openings::{Opening, OpeningKind, PotentialFlow, CELLS_ALONG_LONGEST};
 use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
 
 mod contacts;
@@ -97,7 +98,8 @@ pub enum Fate {
     Deposited(usize),
     /// Lost to the statistics: a non-finite state or a contact the wall law flagged invalid.
     Escaped,
-    /// Taken out of the room by ventilation ([`Scene::air_exchange`]).
+    /// Taken out of the room by ventilation: by the uniform exhaust ([`Scene::air_exchange`]),
+    /// or through an exhaust opening ([`Scene::openings`]).
     Exhausted,
 }
 
@@ -159,6 +161,11 @@ pub(crate) struct Prepared<'a> {
     pub behaviours: Vec<WallBehaviour>,
     /// The furnishings (empty in most scenes, which then take no furnished path).
     pub boxes: &'a [Furnishing],
+    /// The potential flow between the room's openings ([`crate::openings`]), added to the
+    /// mean flow; `None` without openings (most scenes, which then take no such path).
+    pub mean_flow: Option<PotentialFlow>,
+    /// The exhaust openings: a particle that reaches a wall within one leaves the room.
+    pub exhausts: Vec<Opening>,
     pub size: [f64; 3],
     pub walled: [bool; 3],
     /// Per axis, the walls' coordinates (`0` and the size), infinite along periodic axes.
@@ -184,6 +191,9 @@ impl<'a> Prepared<'a> {
             surfaces: scene.surfaces(),
             behaviours: scene.surface_behaviours(),
             boxes: &scene.furnishings,
+            mean_flow: (!scene.openings.is_empty())
+                .then(|| PotentialFlow::new(size, &scene.openings, CELLS_ALONG_LONGEST)),
+            exhausts: scene.openings.iter().filter(|o| o.kind == OpeningKind::Exhaust).copied().collect(),
             size,
             walled,
             lower: walled.map(|w| if w { 0.0 } else { f64::NEG_INFINITY }),
@@ -358,10 +368,11 @@ pub(crate) fn track(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [
     // (Lanes pay where there are look-ups to overlap, or where the forcing is constant and they
     // fly freely; a scene with Brownian motion alone, or a laminar profile, runs faster one
     // particle at a time.)
-    // Furnished scenes take the one-particle loop: its contact search and turbulence know the
-    // boxes, the lanes' free-flight bounds and table look-ups do not.
+    // Furnished scenes and scenes with openings take the one-particle loop: its contact search
+    // and turbulence know the boxes, and its fluid velocity the openings' mean flow; the
+    // lanes' free-flight bounds and table look-ups do not.
     let free = !(brown || turb) && p.field.profile.is_none();
-    if (turb || free) && !(finite_re || euler || lift) && p.boxes.is_empty() {
+    if (turb || free) && !(finite_re || euler || lift) && p.boxes.is_empty() && p.mean_flow.is_none() {
         return match (turb, brown) {
             (true, true) => run_lanes::<true, true>(p, ids, tally),
             (true, false) => run_lanes::<false, true>(p, ids, tally),
@@ -479,11 +490,14 @@ fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
     if turb {
         zeta = [z[0], z[1], z[2]];
     }
-    let uf = if p.boxes.is_empty() {
+    let mut uf = if p.boxes.is_empty() {
         fluid_velocity::<true>(&p.field, p.size, x, &zeta)
     } else {
         furnished_fluid_velocity(&p.field, p.size, p.boxes, x, &mut zeta, None)
     };
+    if let Some(mean) = &p.mean_flow {
+        uf += DVec3::from_array(mean.velocity(start));
+    }
     let mut v = match p.injection.velocity {
         Some(v) => DVec3::from_array(v),
         None => uf + body.settling,
@@ -584,7 +598,7 @@ impl Flyer {
         let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
         let z = self.draws.step(n, per_step);
         let (x, v) = (self.x, self.v);
-        let uf = if !p.boxes.is_empty() {
+        let mut uf = if !p.boxes.is_empty() {
             let normals = TURB.then(|| [z[0], z[1], z[2]]);
             furnished_fluid_velocity(field, p.size, p.boxes, x, &mut self.zeta, normals)
         } else if TURB {
@@ -592,6 +606,9 @@ impl Flyer {
         } else {
             fluid_velocity::<false>(field, p.size, x, &self.zeta)
         };
+        if let Some(mean) = &p.mean_flow {
+            uf += DVec3::from_array(mean.velocity(x.to_array()));
+        }
         let body = &mut self.body;
         if FINITE_RE {
             let nu = scene.air.kinematic_viscosity();

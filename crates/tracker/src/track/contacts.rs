@@ -188,6 +188,10 @@ pub(super) fn contacts<const EULER: bool>(
         x[wall.axis] = if wall.upper { wall.position - r } else { wall.position + r };
         let x = wrap(x, p);
         elapsed += t;
+        // Within an exhaust opening the particle leaves with the air (`crate::openings`).
+        if wall.furnishing.is_none() && p.exhausts.iter().any(|o| o.wall == wall.id && o.holds(x.to_array())) {
+            return AfterContacts::Left(Fate::Exhausted, elapsed, x);
+        }
         // Where a deposited particle rests: touching the wall (the contact plane is moved out
         // by the continuity correction with Brownian motion).
         let mut touching = x;

@@ -262,7 +262,9 @@ struct Branch {
 /// `beta` a decay experiment measures) are the closed room's. Weighting an excursion's
 /// deposits by the chance `exp(-a s)` that the particle was not exhausted first would give
 /// the steady state of a continuous source instead, and disagree with plain tracking of the
-/// same decay (a test showed 3 standard errors at 6 air changes per hour).
+/// same decay (a test showed 3 standard errors at 6 air changes per hour). Exhaust
+/// openings ([`Scene::openings`](crate::Scene::openings)) do touch them: a branch that
+/// reaches an exhaust leaves, as the particle would, and deposits nothing.
 #[allow(clippy::too_many_arguments)]
 fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
     p: &Prepared<'_>,

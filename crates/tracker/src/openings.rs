@@ -1,0 +1,673 @@
+//! Supply and exhaust openings on a room's walls, and the mean flow they drive.
+//!
+//! Without openings a ventilated room exhausts each airborne particle at the exchange rate
+//! `a` wherever it is ([`Scene::air_exchange`](crate::Scene::air_exchange)): the well-mixed
+//! room. With openings ([`Scene::openings`](crate::Scene::openings)) the air enters through
+//! the supply openings and leaves through the exhaust openings, and so do the particles it
+//! carries: a particle leaves the room when it reaches the wall within an exhaust opening.
+//!
+//! ## Openings
+//! An opening is a rectangle on one of the room's walls (ids as
+//! [`Geometry::walls`](crate::Geometry::walls) numbers them: 0 the floor, 1 the ceiling, 2
+//! and 3 at `x = 0` and `Lx`, 4 and 5 at `y = 0` and `Ly`), given by its centre and size in
+//! the wall's two in-plane coordinates in the order x, y, z (the floor's and the ceiling's
+//! `(x, y)`, the `x` walls' `(y, z)`, the `y` walls' `(x, z)`), and a volume flow `Q`
+//! (m^3/s) through it, uniform over its area (face velocity `Q / A`). Openings lie within
+//! their wall and do not overlap one another (they may touch); the supply openings' flows sum
+//! to the exhaust openings' (the air's mass balance).
+//!
+//! ## Exchange rate
+//! With openings the exchange rate IS theirs: `a = sum Q_exhaust / V`, with `V` the air's
+//! volume (the room's less the furnishings'), and [`Scene::air_exchange`](crate::Scene::air_exchange)
+//! must be 0 (a scene error otherwise): the uniform exhaust and the openings are two models of
+//! the same ventilation, not two ventilations. [`Scene::exchange_rate`](crate::Scene::exchange_rate)
+//! gives `a` either way, for what reads it (the decay fit, the indoor/outdoor ratio).
+//!
+//! ## Mean flow
+//! The air between the openings moves in a potential flow: irrotational and divergence-free,
+//! `u = grad phi` with
+//!
+//! ```text
+//! lap phi = 0 in the room,   d phi / dn = Q / A on an opening (outward on an exhaust,
+//!                            inward on a supply),   d phi / dn = 0 on the rest of the walls
+//! ```
+//!
+//! (a Neumann problem, solvable because the flows balance). It has no jets, no separation and
+//! no recirculation: it is the crudest flow that carries air, and the particles in it, from
+//! the supply to the exhaust while conserving volume. That is enough for its purpose: a
+//! supply's jet decays within a metre or so, and away from the openings the potential flow's
+//! speed, `Q / (room cross-section)`, is millimetres per second (a 30 m^3 room at 2 air
+//! changes per hour, 3 m wide and 2.5 m high: 2.2 mm/s), dwarfed by the core's turbulent
+//! fluctuations, centimetres per second, which mix the room. What matters for deposition and
+//! removal is that the exhaust takes air, and the particles in it, at the right rate from
+//! where it is; near the exhaust the flow converges on it as the real flow does. The room's
+//! turbulence (near-wall layers at every wall, blended into the well-mixed core,
+//! [`crate::flow`]) acts on top of the mean flow, as it does without openings; at an exhaust
+//! opening the wall's near-wall profile is kept (the fluctuations normal to it vanish at the
+//! wall plane), so in its last millimetres a particle reaches the exhaust by the mean flow,
+//! whose normal velocity there is the face velocity. The mean flow does not see the
+//! furnishings: it passes through them (a particle does not). How well mixed the room then
+//! is, and so how fast the exhaust removes particles against `a` (faster where the supply
+//! displaces old air towards it, slower where supply air short-circuits to it), is the
+//! turbulence's doing; docs/tracker.md gives what it measured.
+//!
+//! **Solution.** Cell-centred finite volumes on a uniform grid of [`CELLS_ALONG_LONGEST`]
+//! cells along the room's longest side (about as wide along the others): each cell's
+//! outflows sum to zero, those through the walls prescribed (an opening's face velocity
+//! times the part of the cell's wall face it covers), those between cells `(phi_j - phi_i) /
+//! h` times the face. The discrete Laplacian with these walls is diagonalised by the cosine
+//! transform (the cell-centred DCT-II along each axis), so the system is solved exactly, to
+//! rounding, by three transforms, a division by its eigenvalues and three transforms back
+//! (done as dense matrix products along each axis: a few tens of millions of operations,
+//! milliseconds, once per run). The velocities live on the cell faces (a staggered, "MAC",
+//! grid) and are interpolated to a particle face-wise: each component linearly along its own
+//! axis between the two faces of the particle's cell, constant across it (the lowest-order
+//! Raviart-Thomas field), whose divergence within every cell is the cell's discrete one,
+//! zero to rounding, so the interpolated flow neither gathers nor thins out particles. The
+//! one exception is the normal component in a cell on a wall with openings: its value on the
+//! wall is taken at the particle's own position, the opening's face velocity within an
+//! opening and zero outside, rather than the wall face's average. Where an opening's edge
+//! cuts a wall face, the average would push air, and the particles in it, against the solid
+//! wall beside the opening, and a sink wall would collect them there (at 0.1 um in the
+//! default room with the example's openings, 11 % of the release deposited on the walls
+//! within a cell of the exhaust in an hour, against 0.3 % with the uniform exhaust). With the
+//! wall's own value the normal flow on a wall is exactly the prescribed one, and only those
+//! few cells are not divergence-free within themselves (they are on the whole).
+//!
+//! ## Particles at the openings
+//! A particle that reaches a wall (its contact plane, as for deposition) at a point within an
+//! exhaust opening leaves the room: [`Fate::Exhausted`](crate::Fate::Exhausted), counted with
+//! the exhausted in the run's balance. A supply opening is part of its wall for particles
+//! (the wall's behaviour acts there); it brings in clean air only.
+
+use crate::geometry::Geometry;
+use crate::scene::SceneError;
+
+/// Cells of the mean-flow grid along the room's longest side.
+pub const CELLS_ALONG_LONGEST: usize = 48;
+
+/// Relative mismatch allowed between the supply and the exhaust openings' total flows.
+pub const FLOW_BALANCE: f64 = 1e-9;
+
+/// Whether an opening lets air in or out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpeningKind {
+    /// Clean air comes in.
+    Supply,
+    /// Air leaves, and the particles that reach the opening with it.
+    Exhaust,
+}
+
+/// A rectangular opening on a room's wall (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Opening {
+    /// Supply or exhaust.
+    pub kind: OpeningKind,
+    /// The wall's id ([`Geometry::walls`]).
+    pub wall: usize,
+    /// Its centre in the wall's two in-plane coordinates, in the order x, y, z, m.
+    pub center: [f64; 2],
+    /// Its extent along the same two coordinates, m.
+    pub size: [f64; 2],
+    /// Volume flow through it, m^3/s (positive for either kind).
+    pub flow: f64,
+}
+
+/// The two in-plane axes of a wall normal to `axis`, in the order x, y, z.
+#[must_use]
+pub fn in_plane_axes(axis: usize) -> [usize; 2] {
+    match axis {
+        0 => [1, 2],
+        1 => [0, 2],
+        _ => [0, 1],
+    }
+}
+
+/// The axis a room wall is normal to and whether it is at the upper end of it, by id.
+fn wall_axis(wall: usize) -> (usize, bool) {
+    ([2, 0, 1][wall / 2], wall % 2 == 1)
+}
+
+impl Opening {
+    /// A supply opening on `wall`, centred at `center` with `size` (m), taking in `flow` (m^3/s).
+    #[must_use]
+    pub fn supply(wall: usize, center: [f64; 2], size: [f64; 2], flow: f64) -> Self {
+        Self { kind: OpeningKind::Supply, wall, center, size, flow }
+    }
+
+    /// An exhaust opening on `wall`, centred at `center` with `size` (m), taking out `flow`
+    /// (m^3/s).
+    #[must_use]
+    pub fn exhaust(wall: usize, center: [f64; 2], size: [f64; 2], flow: f64) -> Self {
+        Self { kind: OpeningKind::Exhaust, wall, center, size, flow }
+    }
+
+    /// Area, m^2.
+    #[must_use]
+    pub fn area(&self) -> f64 {
+        self.size[0] * self.size[1]
+    }
+
+    /// The face velocity `Q / A`, m/s.
+    #[must_use]
+    pub fn face_velocity(&self) -> f64 {
+        self.flow / self.area()
+    }
+
+    /// Its extent along its wall's two in-plane axes: `[[low, high]; 2]`, m.
+    #[must_use]
+    pub fn bounds(&self) -> [[f64; 2]; 2] {
+        std::array::from_fn(|i| [self.center[i] - 0.5 * self.size[i], self.center[i] + 0.5 * self.size[i]])
+    }
+
+    /// Whether the point `x` (on or near its wall) lies within the opening's rectangle
+    /// (edges included), judged by its in-plane coordinates.
+    #[inline]
+    #[must_use]
+    pub fn holds(&self, x: [f64; 3]) -> bool {
+        let axes = in_plane_axes(wall_axis(self.wall).0);
+        let b = self.bounds();
+        (0..2).all(|i| x[axes[i]] >= b[i][0] && x[axes[i]] <= b[i][1])
+    }
+
+    /// Whether the interiors of two openings on the same wall overlap.
+    #[must_use]
+    pub fn overlaps(&self, other: &Opening) -> bool {
+        let (a, b) = (self.bounds(), other.bounds());
+        self.wall == other.wall && (0..2).all(|i| a[i][0] < b[i][1] && b[i][0] < a[i][1])
+    }
+}
+
+/// The exhaust openings' total flow, m^3/s.
+#[must_use]
+pub fn exhaust_flow(openings: &[Opening]) -> f64 {
+    openings.iter().filter(|o| o.kind == OpeningKind::Exhaust).map(|o| o.flow).sum()
+}
+
+/// The supply openings' total flow, m^3/s.
+#[must_use]
+pub fn supply_flow(openings: &[Opening]) -> f64 {
+    openings.iter().filter(|o| o.kind == OpeningKind::Supply).map(|o| o.flow).sum()
+}
+
+/// Checks `openings` in `geometry` (module docs); the error names the first offending field,
+/// `openings[k].wall`, `.center`, `.size`, `.flow`, or `openings` for the flows' balance.
+pub fn validate(openings: &[Opening], geometry: &Geometry) -> Result<(), SceneError> {
+    if openings.is_empty() {
+        return Ok(());
+    }
+    let Geometry::Room { size } = *geometry else {
+        return Err(SceneError::new("openings", openings.len() as f64, "need a room"));
+    };
+    for (k, o) in openings.iter().enumerate() {
+        let field = |key: &str| format!("openings[{k}].{key}");
+        if o.wall >= 6 {
+            return Err(SceneError {
+                field: field("wall"),
+                value: o.wall as f64,
+                requirement: "must be a room wall's id, 0 to 5",
+            });
+        }
+        if !(o.flow.is_finite() && o.flow > 0.0) {
+            return Err(SceneError { field: field("flow"), value: o.flow, requirement: "must be finite and positive" });
+        }
+        let axes = in_plane_axes(wall_axis(o.wall).0);
+        for i in 0..2 {
+            if !(o.size[i].is_finite() && o.size[i] > 0.0) {
+                return Err(SceneError {
+                    field: field("size"),
+                    value: o.size[i],
+                    requirement: "must be finite and positive",
+                });
+            }
+            let [lo, hi] = o.bounds()[i];
+            if !(o.center[i].is_finite() && lo >= 0.0 && hi <= size[axes[i]]) {
+                return Err(SceneError {
+                    field: field("center"),
+                    value: o.center[i],
+                    requirement: "must keep the opening (center +- size / 2) within its wall",
+                });
+            }
+        }
+        if let Some(other) = openings[..k].iter().position(|p| p.overlaps(o)) {
+            return Err(SceneError {
+                field: field("center"),
+                value: other as f64,
+                requirement: "must not overlap another opening (the one at this index) on the same wall",
+            });
+        }
+    }
+    let (supply, exhaust) = (supply_flow(openings), exhaust_flow(openings));
+    if supply <= 0.0 || exhaust <= 0.0 {
+        return Err(SceneError::new(
+            "openings",
+            if supply <= 0.0 { supply } else { exhaust },
+            "need a supply and an exhaust: the air that comes in must go out",
+        ));
+    }
+    if (supply - exhaust).abs() > FLOW_BALANCE * supply.max(exhaust) {
+        return Err(SceneError::new(
+            "openings",
+            supply - exhaust,
+            "must balance: the supply openings' flows must sum to the exhaust openings' (this is the difference, m^3/s)",
+        ));
+    }
+    Ok(())
+}
+
+/// The potential flow between a room's openings on a staggered grid (module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PotentialFlow {
+    /// Cells along x, y, z.
+    cells: [usize; 3],
+    /// Cell size along x, y, z, m.
+    h: [f64; 3],
+    /// Per axis `a`, the velocity component along `a` on the faces normal to `a`, m/s: `cells`
+    /// with `cells[a] + 1` along `a`, x fastest.
+    faces: [Vec<f64>; 3],
+    /// Per room wall, its openings: their extent along the wall's in-plane axes and the
+    /// velocity along the wall's axis within them, m/s.
+    openings: [Vec<([[f64; 2]; 2], f64)>; 6],
+}
+
+impl PotentialFlow {
+    /// Solves the flow in a room of `size` (m) between `openings` (validated, balanced), on
+    /// a grid of `longest` cells along the longest side (at least 2 along each).
+    #[must_use]
+    pub fn new(size: [f64; 3], openings: &[Opening], longest: usize) -> Self {
+        let longest_side = size.iter().copied().fold(0.0, f64::max);
+        let cells = size.map(|l| ((l / longest_side * longest as f64).round() as usize).max(2));
+        let h: [f64; 3] = std::array::from_fn(|a| size[a] / cells[a] as f64);
+        let [nx, ny, nz] = cells;
+        let cell_volume = h[0] * h[1] * h[2];
+        let mut faces: [Vec<f64>; 3] = std::array::from_fn(|a| {
+            let mut dims = cells;
+            dims[a] += 1;
+            vec![0.0; dims.iter().product()]
+        });
+        // The walls' outflows: onto the wall faces, and into the cells' balances, each
+        // `L phi = -(its outflow through the walls) / V_cell` (module docs).
+        let mut rhs = vec![0.0; nx * ny * nz];
+        for o in openings {
+            let (axis, upper) = wall_axis(o.wall);
+            let [b, c] = in_plane_axes(axis);
+            let bounds = o.bounds();
+            let outward = match o.kind {
+                OpeningKind::Exhaust => o.face_velocity(),
+                OpeningKind::Supply => -o.face_velocity(),
+            };
+            let overlap = |j: usize, axis: usize, [lo, hi]: [f64; 2]| {
+                let (a0, a1) = (j as f64 * h[axis], (j + 1) as f64 * h[axis]);
+                (a1.min(hi) - a0.max(lo)).max(0.0)
+            };
+            for jc in 0..cells[c] {
+                let oc = overlap(jc, c, bounds[1]);
+                if oc <= 0.0 {
+                    continue;
+                }
+                for jb in 0..cells[b] {
+                    let ob = overlap(jb, b, bounds[0]);
+                    if ob <= 0.0 {
+                        continue;
+                    }
+                    let flux = outward * ob * oc;
+                    let mut cell = [0; 3];
+                    cell[axis] = if upper { cells[axis] - 1 } else { 0 };
+                    cell[b] = jb;
+                    cell[c] = jc;
+                    rhs[cell[0] + nx * (cell[1] + ny * cell[2])] -= flux / cell_volume;
+                    let mut face = cell;
+                    face[axis] = if upper { cells[axis] } else { 0 };
+                    let face_area = h[b] * h[c];
+                    // The component along +axis: outward at the upper wall, inward at the lower.
+                    let along = if upper { flux } else { -flux } / face_area;
+                    faces[axis][face_index(cells, axis, face)] += along;
+                }
+            }
+        }
+        let phi = solve_neumann(cells, h, rhs);
+        for a in 0..3 {
+            for k in 0..nz {
+                for j in 0..ny {
+                    for i in 0..nx {
+                        let cell = [i, j, k];
+                        if cell[a] == 0 {
+                            continue;
+                        }
+                        let mut below = cell;
+                        below[a] -= 1;
+                        let at = |c: [usize; 3]| phi[c[0] + nx * (c[1] + ny * c[2])];
+                        faces[a][face_index(cells, a, cell)] = (at(cell) - at(below)) / h[a];
+                    }
+                }
+            }
+        }
+        let mut on_walls: [Vec<([[f64; 2]; 2], f64)>; 6] = Default::default();
+        for o in openings {
+            let upper = wall_axis(o.wall).1;
+            let outward = if o.kind == OpeningKind::Exhaust { o.face_velocity() } else { -o.face_velocity() };
+            on_walls[o.wall].push((o.bounds(), if upper { outward } else { -outward }));
+        }
+        Self { cells, h, faces, openings: on_walls }
+    }
+
+    /// Cells along x, y, z.
+    #[must_use]
+    pub fn cells(&self) -> [usize; 3] {
+        self.cells
+    }
+
+    /// The velocity component along `axis` on the face normal to it at the low side of
+    /// `cell` (`cell[axis]` may be `cells[axis]`, the upper wall), m/s.
+    #[must_use]
+    pub fn face_velocity(&self, axis: usize, cell: [usize; 3]) -> f64 {
+        self.faces[axis][face_index(self.cells, axis, cell)]
+    }
+
+    /// The net outflow of cell `cell` over its volume, 1/s: the discrete divergence.
+    #[must_use]
+    pub fn divergence(&self, cell: [usize; 3]) -> f64 {
+        (0..3)
+            .map(|a| {
+                let mut next = cell;
+                next[a] += 1;
+                (self.face_velocity(a, next) - self.face_velocity(a, cell)) / self.h[a]
+            })
+            .sum()
+    }
+
+    /// The outflow through room wall `wall` (its faces' velocities times their areas), m^3/s.
+    #[must_use]
+    pub fn wall_outflow(&self, wall: usize) -> f64 {
+        let (axis, upper) = wall_axis(wall);
+        let [b, c] = in_plane_axes(axis);
+        let mut sum = 0.0;
+        for jc in 0..self.cells[c] {
+            for jb in 0..self.cells[b] {
+                let mut face = [0; 3];
+                face[axis] = if upper { self.cells[axis] } else { 0 };
+                face[b] = jb;
+                face[c] = jc;
+                sum += self.face_velocity(axis, face);
+            }
+        }
+        let outward = if upper { sum } else { -sum };
+        outward * self.h[b] * self.h[c]
+    }
+
+    /// The mean velocity at `x` (m), interpolated from the faces (module docs), m/s.
+    #[inline]
+    #[must_use]
+    pub fn velocity(&self, x: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|a| self.component(a, x))
+    }
+
+    /// The component along `axis` at `x`: linear along `axis` between the two faces of the
+    /// cell holding `x` normal to it, constant across it within the cell; where one of those
+    /// faces is a wall with openings, the wall's value there is the opening's velocity at
+    /// `x`'s in-plane position, or zero outside the openings (not the face's average).
+    #[inline]
+    fn component(&self, axis: usize, x: [f64; 3]) -> f64 {
+        let cells = self.cells;
+        let cell: [usize; 3] = std::array::from_fn(|a| ((x[a] / self.h[a]).max(0.0) as usize).min(cells[a] - 1));
+        let t = (x[axis] / self.h[axis] - cell[axis] as f64).clamp(0.0, 1.0);
+        let low = face_index(cells, axis, cell);
+        // Along `axis` in its own face array (`cells` but one more along `axis`).
+        let stride = [1, cells[0], cells[0] * cells[1]][axis];
+        let f = &self.faces[axis];
+        let (mut below, mut above) = (f[low], f[low + stride]);
+        let wall = [2, 4, 0][axis];
+        if cell[axis] == 0 && !self.openings[wall].is_empty() {
+            below = self.at_wall(wall, axis, x);
+        }
+        if cell[axis] == cells[axis] - 1 && !self.openings[wall + 1].is_empty() {
+            above = self.at_wall(wall + 1, axis, x);
+        }
+        (1.0 - t) * below + t * above
+    }
+
+    /// The velocity along `axis` on room wall `wall` (normal to it) at `x`'s in-plane
+    /// position: an opening's there, zero elsewhere.
+    fn at_wall(&self, wall: usize, axis: usize, x: [f64; 3]) -> f64 {
+        let [b, c] = in_plane_axes(axis);
+        self.openings[wall]
+            .iter()
+            .find(|(r, _)| x[b] >= r[0][0] && x[b] <= r[0][1] && x[c] >= r[1][0] && x[c] <= r[1][1])
+            .map_or(0.0, |&(_, u)| u)
+    }
+}
+
+/// Index of the face normal to `axis` at the low side of `cell` in the face array of `axis`.
+fn face_index(cells: [usize; 3], axis: usize, cell: [usize; 3]) -> usize {
+    let mut dims = cells;
+    dims[axis] += 1;
+    cell[0] + dims[0] * (cell[1] + dims[1] * cell[2])
+}
+
+/// Solves `L phi = rhs` for the cell-centred Laplacian with zero-flux walls on a grid of
+/// `cells` of size `h` (m), `rhs` summing to zero: the solution of zero mean.
+///
+/// The 1-D Laplacian `(phi_{i-1} - 2 phi_i + phi_{i+1}) / h^2` with mirror ghost cells has
+/// the eigenvectors `cos(pi k (i + 1/2) / n)` and eigenvalues `-4 / h^2 sin^2(pi k / (2 n))`,
+/// `k = 0..n`: the cosine transform (DCT-II) along each axis diagonalises the 3-D one, whose
+/// eigenvalues are the sums of the axes'.
+fn solve_neumann(cells: [usize; 3], h: [f64; 3], mut rhs: Vec<f64>) -> Vec<f64> {
+    let bases: [Vec<f64>; 3] = std::array::from_fn(|a| cosine_basis(cells[a]));
+    for (a, basis) in bases.iter().enumerate() {
+        transform_along(&mut rhs, cells, a, basis, false);
+    }
+    let eigen: [Vec<f64>; 3] = std::array::from_fn(|a| {
+        let n = cells[a];
+        (0..n)
+            .map(|k| {
+                let s = (std::f64::consts::PI * k as f64 / (2.0 * n as f64)).sin();
+                -4.0 * s * s / (h[a] * h[a])
+            })
+            .collect()
+    });
+    let [nx, ny, _] = cells;
+    for (index, value) in rhs.iter_mut().enumerate() {
+        let (i, j, k) = (index % nx, (index / nx) % ny, index / (nx * ny));
+        let lambda = eigen[0][i] + eigen[1][j] + eigen[2][k];
+        // The constant mode: phi is defined up to a constant (its mean is set to zero).
+        *value = if index == 0 { 0.0 } else { *value / lambda };
+    }
+    for (a, basis) in bases.iter().enumerate() {
+        transform_along(&mut rhs, cells, a, basis, true);
+    }
+    rhs
+}
+
+/// The orthonormal DCT-II matrix of size `n`, row `k`: `w_k cos(pi k (i + 1/2) / n)` with
+/// `w_0 = sqrt(1/n)`, `w_k = sqrt(2/n)`.
+fn cosine_basis(n: usize) -> Vec<f64> {
+    let mut m = vec![0.0; n * n];
+    for k in 0..n {
+        let w = if k == 0 { (1.0 / n as f64).sqrt() } else { (2.0 / n as f64).sqrt() };
+        for i in 0..n {
+            m[k * n + i] = w * (std::f64::consts::PI * k as f64 * (i as f64 + 0.5) / n as f64).cos();
+        }
+    }
+    m
+}
+
+/// Applies the matrix `basis` (or its transpose, the inverse) along `axis` of `data`.
+fn transform_along(data: &mut [f64], cells: [usize; 3], axis: usize, basis: &[f64], transpose: bool) {
+    let n = cells[axis];
+    let stride = match axis {
+        0 => 1,
+        1 => cells[0],
+        _ => cells[0] * cells[1],
+    };
+    let mut line = vec![0.0; n];
+    let mut out = vec![0.0; n];
+    for start in 0..data.len() {
+        // Each line once: from its first cell along `axis`.
+        if (start / stride) % n != 0 {
+            continue;
+        }
+        for (i, l) in line.iter_mut().enumerate() {
+            *l = data[start + i * stride];
+        }
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = (0..n).map(|i| if transpose { basis[i * n + k] } else { basis[k * n + i] } * line[i]).sum();
+        }
+        for (i, o) in out.iter().enumerate() {
+            data[start + i * stride] = *o;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SIZE: [f64; 3] = [4.0, 3.0, 2.5];
+
+    fn two_openings() -> Vec<Opening> {
+        // Supply high on the x0 wall, exhaust low on the y1 wall: 60 m^3/h.
+        let q = 60.0 / 3600.0;
+        vec![Opening::supply(2, [1.5, 2.2], [0.4, 0.3], q), Opening::exhaust(5, [3.3, 0.3], [0.5, 0.25], q)]
+    }
+
+    #[test]
+    fn divergence_vanishes_and_walls_carry_only_their_openings() {
+        let openings = two_openings();
+        let flow = PotentialFlow::new(SIZE, &openings, CELLS_ALONG_LONGEST);
+        assert_eq!(flow.cells(), [48, 36, 30]);
+        let q = openings[0].flow;
+        // A cell's inflow is up to q / (its wall face): the scale of the divergence.
+        let scale = q / (flow.h[0] * flow.h[1] * flow.h[2]);
+        let [nx, ny, nz] = flow.cells();
+        let mut worst: f64 = 0.0;
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    worst = worst.max(flow.divergence([i, j, k]).abs());
+                }
+            }
+        }
+        assert!(worst < 1e-10 * scale, "{worst} against {scale}");
+        // Through each wall: its openings' outflow, to rounding; none through the others.
+        let outflows: Vec<f64> = (0..6).map(|w| flow.wall_outflow(w)).collect();
+        assert!((outflows[2] + q).abs() < 1e-14, "{outflows:?}");
+        assert!((outflows[5] - q).abs() < 1e-14, "{outflows:?}");
+        for w in [0, 1, 3, 4] {
+            assert_eq!(outflows[w], 0.0, "wall {w}");
+        }
+        // No flow through a solid wall, anywhere on it: the interpolated normal velocity on
+        // the floor, the ceiling and the x1 wall is exactly zero.
+        for (x, y) in [(0.3, 0.4), (2.0, 1.5), (3.9, 2.9)] {
+            assert_eq!(flow.velocity([x, y, 0.0])[2], 0.0);
+            assert_eq!(flow.velocity([x, y, 2.5])[2], 0.0);
+            assert_eq!(flow.velocity([4.0, y, x.min(2.5)])[0], 0.0);
+        }
+        // Nor beside an opening, within the wall face its edge cuts: the exhaust spans x from
+        // 3.05 to 3.55 m and z from 0.175 to 0.425 m on the y1 wall, whose faces are 1/12 m.
+        for (x, z) in [(3.0, 0.3), (3.6, 0.3), (3.3, 0.15), (3.3, 0.45)] {
+            assert_eq!(flow.velocity([x, 3.0, z])[1], 0.0, "{x} {z}");
+            assert!(flow.velocity([x, 2.99, z])[1] > 0.0, "the air moves towards the exhaust there");
+        }
+        // In the middle of each opening the normal velocity is its face velocity.
+        let supply = flow.velocity([0.0, 1.5, 2.2]);
+        assert!((supply[0] / openings[0].face_velocity() - 1.0).abs() < 1e-9, "{supply:?}");
+        let exhaust = flow.velocity([3.3, 3.0, 0.3]);
+        assert!((exhaust[1] / openings[1].face_velocity() - 1.0).abs() < 1e-9, "{exhaust:?}");
+        // In the core the flow is slow: millimetres per second at 60 m^3/h.
+        let core = flow.velocity([2.0, 1.5, 1.25]);
+        let speed = core.iter().map(|c| c * c).sum::<f64>().sqrt();
+        assert!(speed > 1e-4 && speed < 1e-2, "{core:?}");
+    }
+
+    /// Openings on cell faces: the faces they cover carry exactly their flow each.
+    #[test]
+    fn each_opening_carries_its_flow() {
+        // 48 x 36 x 30 cells of 1/12 m: openings with edges on cell faces.
+        let h = 1.0 / 12.0;
+        let openings = vec![
+            Opening::supply(0, [6.0 * h, 6.0 * h], [4.0 * h, 4.0 * h], 0.02),
+            Opening::supply(1, [30.0 * h, 18.0 * h], [6.0 * h, 2.0 * h], 0.01),
+            Opening::exhaust(3, [24.0 * h, 15.0 * h], [8.0 * h, 6.0 * h], 0.03),
+        ];
+        let flow = PotentialFlow::new(SIZE, &openings, CELLS_ALONG_LONGEST);
+        for o in &openings {
+            let (axis, upper) = wall_axis(o.wall);
+            let [b, c] = in_plane_axes(axis);
+            let mut through = 0.0;
+            for jc in 0..flow.cells[c] {
+                for jb in 0..flow.cells[b] {
+                    let centre = {
+                        let mut x = [0.0; 3];
+                        x[axis] = if upper { SIZE[axis] } else { 0.0 };
+                        x[b] = (jb as f64 + 0.5) * flow.h[b];
+                        x[c] = (jc as f64 + 0.5) * flow.h[c];
+                        x
+                    };
+                    if !o.holds(centre) {
+                        continue;
+                    }
+                    let mut face = [0; 3];
+                    face[axis] = if upper { flow.cells[axis] } else { 0 };
+                    face[b] = jb;
+                    face[c] = jc;
+                    let outward = if upper { 1.0 } else { -1.0 } * flow.face_velocity(axis, face);
+                    through += outward * flow.h[b] * flow.h[c];
+                }
+            }
+            let expected = if o.kind == OpeningKind::Exhaust { o.flow } else { -o.flow };
+            assert!((through - expected).abs() < 1e-12 * o.flow, "{o:?}: {through}");
+        }
+    }
+
+    /// Supply over the whole x0 wall, exhaust over the whole x1 wall: plug flow,
+    /// `Q / (Ly Lz)` along x everywhere.
+    #[test]
+    fn whole_walls_give_uniform_flow() {
+        let q = 0.15;
+        let openings =
+            vec![Opening::supply(2, [1.5, 1.25], [3.0, 2.5], q), Opening::exhaust(3, [1.5, 1.25], [3.0, 2.5], q)];
+        let flow = PotentialFlow::new(SIZE, &openings, 40);
+        let u = q / (3.0 * 2.5);
+        for x in [[0.0, 0.0, 0.0], [0.01, 2.9, 1.0], [2.0, 1.5, 1.25], [3.99, 0.2, 2.49], [4.0, 3.0, 2.5]] {
+            let v = flow.velocity(x);
+            assert!((v[0] / u - 1.0).abs() < 1e-12, "{x:?}: {v:?}");
+            assert!(v[1].abs() < 1e-14 && v[2].abs() < 1e-14, "{x:?}: {v:?}");
+        }
+    }
+
+    #[test]
+    fn bad_openings_are_refused_by_name() {
+        let room = Geometry::Room { size: SIZE };
+        let q = 0.01;
+        let field = |openings: &[Opening]| validate(openings, &room).unwrap_err().field;
+        assert!(validate(&two_openings(), &room).is_ok());
+        assert!(validate(&[], &room).is_ok());
+        let mut o = two_openings();
+        o[1].wall = 6;
+        assert_eq!(field(&o), "openings[1].wall");
+        let mut o = two_openings();
+        o[0].flow = f64::NAN;
+        assert_eq!(field(&o), "openings[0].flow");
+        let mut o = two_openings();
+        o[1].size = [0.0, 0.1];
+        assert_eq!(field(&o), "openings[1].size");
+        // Beyond the wall: the x0 wall's in-plane coordinates are (y, z), 3 m by 2.5 m.
+        let mut o = two_openings();
+        o[0].center = [1.5, 2.4];
+        assert_eq!(field(&o), "openings[0].center");
+        let mut o = two_openings();
+        o.push(Opening::exhaust(5, [3.0, 0.3], [0.5, 0.25], q));
+        assert_eq!(field(&o), "openings[2].center", "overlaps the exhaust");
+        // Beside it, a second exhaust unbalances the flows.
+        o[2].center = [2.5, 0.3];
+        let e = validate(&o, &room).unwrap_err();
+        assert_eq!(e.field, "openings");
+        assert!(e.requirement.contains("balance"), "{e}");
+        // A supply alone.
+        assert_eq!(field(&[Opening::supply(0, [1.0, 1.0], [0.2, 0.2], q)]), "openings");
+        let channel = Geometry::Channel { length: 1.0, width: 1.0, height: 0.1 };
+        assert_eq!(validate(&two_openings(), &channel).unwrap_err().field, "openings");
+        assert!(two_openings()[1].holds([3.5, 3.0, 0.4]));
+        assert!(!two_openings()[1].holds([3.56, 3.0, 0.3]));
+    }
+}
