@@ -935,7 +935,9 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
     // line over its window in the same colour; the curves also as one CSV.
     let decay = dir.join("room-decay.svg");
     let mut series = Vec::new();
-    let mut text = String::from("diameter_um,time_s,airborne,error,count\n");
+    // One row per size and time; the particle density beside the diameter, since a study
+    // of several densities (distribution modes) has sizes of the same diameter.
+    let mut text = String::from("diameter_um,density_kg_m3,time_s,airborne,error,count\n");
     for (i, r) in rows.iter().enumerate() {
         let c = &r.decay;
         let label =
@@ -960,8 +962,8 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
         }
         for k in 0..c.times_s.len() {
             text.push_str(&format!(
-                "{},{},{},{},{}\n",
-                r.diameter_um, c.times_s[k], c.airborne[k], c.error[k], c.count[k]
+                "{},{},{},{},{},{}\n",
+                r.diameter_um, r.density, c.times_s[k], c.airborne[k], c.error[k], c.count[k]
             ));
         }
     }
