@@ -33,7 +33,9 @@ pub(super) fn fluid_velocity<const TURB: bool>(field: &FlowField, size: [f64; 3]
 /// component's profile taken at its distance to the nearest surface along its axis, room
 /// wall or furnishing face ([`axis_distance`]); with `normals`, `zeta` is then taken one
 /// exact Ornstein-Uhlenbeck step there ([`langevin_step`]), with the drift's sign that of
-/// the change of that distance along the axis.
+/// the change of that distance along the axis. The components along a surface are damped
+/// by the room's walls only (see the comment below): a box's faces shape the component
+/// across them, not those along them.
 #[inline]
 pub(super) fn furnished_fluid_velocity(
     field: &FlowField,
@@ -52,7 +54,11 @@ pub(super) fn furnished_fluid_velocity(
         let distance = |comp: &Component| axis_distance(at, comp.axis, size[comp.axis], boxes);
         let ds = [distance(&turb[0]), distance(&turb[1]), distance(&turb[2])];
         let nodes = [turb[0].table.at(ds[0].0), turb[1].table.at(ds[1].0), turb[2].table.at(ds[2].0)];
-        let g = tangential_products([nodes[0].tangential, nodes[1].tangential, nodes[2].tangential]);
+        // The tangential factors from the room's walls alone: the distance to the nearest
+        // surface along an axis jumps where a box's shadow begins, and a factor that jumped
+        // along another component's own axis would break the well-mixed condition there.
+        let tangential = |comp: &Component| comp.table.at(wall_distance(at[comp.axis], size[comp.axis]).0).tangential;
+        let g = tangential_products([tangential(&turb[0]), tangential(&turb[1]), tangential(&turb[2])]);
         for a in 0..3 {
             let sign = ds[a].1;
             match normals {
