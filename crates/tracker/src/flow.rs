@@ -42,7 +42,26 @@
 //! `v+_rms = 1.01`); beyond it `sigma` and `T_L` blend linearly over `blend_length` into the
 //! well-mixed core's `core_rms` and `core_time`. No mean flow. The near-wall layer is what
 //! Lai & Nazaroff (2000) model; the core stands for the room's air motion, which keeps it well
-//! mixed. Tangential anisotropy near a wall (the streamwise peak) is not represented.
+//! mixed.
+//!
+//! Near a wall the components *along* it are damped too: component `i` is multiplied by
+//! `g(d_j) g(d_k)`, the tangential factors of its distances to the walls across the two other
+//! axes, where `g(y) = sigma_t(y) / core_rms` and `sigma_t` is the tangential profile
+//! `u* t+_rms(y+)` ([`tangential_rms`], the mean of the streamwise and spanwise variances, as
+//! a room's near-wall air has no mean-flow direction) up to the same peak, blended into the
+//! core the same way. So a particle meets the floor with the sublayer's tangential
+//! fluctuation (`0.29 y+ u*` at the wall), not the core's, which is what the wall law's
+//! friction and rolling see. Each component keeps the Lagrangian time of its own axis. Near
+//! one wall the product is the single wall's profile; in a corner the two damp together.
+//! In a furnished room the factors come from the room's walls alone (a box's faces shape
+//! the component across them, not those along them): the distance to the nearest surface
+//! jumps at the edge of a box's shadow, and a factor that jumped along another component's
+//! own axis would need a drift the model does not have (a test saw tracers thinned to 0.80
+//! of uniform at the floor).
+//! The well-mixed drift needs no new term: for the normalised fluctuation `zeta_i = u_i /
+//! sigma_i` Thomson's (1987) Gaussian solution leaves only `d sigma_i / dx_i` (the terms in
+//! `d sigma_i / dx_j`, `j != i`, cancel between `du_i` and the change of `sigma_i` along the
+//! path), and that derivative is the wall-normal profile's slope times `g(d_j) g(d_k)`.
 //!
 //! The crossing-trajectories effect (inertial particles leaving their fluid eddies early) is
 //! not modelled: a particle sees the fluid-element time scale `T_L` whatever its inertia.
@@ -89,6 +108,15 @@ pub fn wall_normal_rms(y_plus: f64) -> f64 {
 #[must_use]
 pub fn spanwise_rms(y_plus: f64) -> f64 {
     0.19 * y_plus / (1.0 + 0.0361 * y_plus.powf(1.21))
+}
+
+/// A tangential fluctuation near a wall with no preferred direction along it, `t+_rms(y+)`:
+/// the root mean square of the streamwise and spanwise fits, `sqrt((u+_rms^2 + w+_rms^2) / 2)`
+/// (a room's near-wall air has no mean-flow direction; see the module doc).
+#[must_use]
+pub fn tangential_rms(y_plus: f64) -> f64 {
+    let (u, w) = (streamwise_rms(y_plus), spanwise_rms(y_plus));
+    (0.5 * (u * u + w * w)).sqrt()
 }
 
 /// Lagrangian integral time `T_L+(y+)` (Kallio & Reeks 1989), held at its `y+ = 200` value
@@ -166,6 +194,11 @@ pub(crate) struct Node {
     /// `T_L (1 - decay) d sigma / dy` (dimensionless), for a step away from the wall; zero in
     /// a table made without drift.
     pub drift: f64,
+    /// A room's tangential factor `g(y)` at this distance (see the module doc), interpolated
+    /// as `sigma` is; 1 in a table without one.
+    pub tangential: f64,
+    /// The rise of `tangential` to the next node.
+    pub tangential_rise: f64,
 }
 
 /// A profile of the distance `y` to the nearer wall, tabulated once per run on two uniform
@@ -191,6 +224,20 @@ impl Table {
     /// otherwise: a component without it then adds zero in the same arithmetic, and the
     /// step needs no per-component switch).
     fn new(y_max: f64, y_split: f64, dt: f64, drift: bool, f: impl Fn(f64) -> (f64, f64)) -> Self {
+        Self::with_tangential(y_max, y_split, dt, drift, f, |_| 1.0)
+    }
+
+    /// [`Table::new`] with a room's tangential factor `g(y)` in the same nodes, so that one
+    /// look-up at a distance gives both the profile of the walls across it and the damping
+    /// of the components along them.
+    fn with_tangential(
+        y_max: f64,
+        y_split: f64,
+        dt: f64,
+        drift: bool,
+        f: impl Fn(f64) -> (f64, f64),
+        g: impl Fn(f64) -> f64,
+    ) -> Self {
         let split = y_split.clamp(1e-3 * y_max, 0.5 * y_max);
         let (fine, coarse) = (split / TABLE_CELLS as f64, (y_max - split) / TABLE_CELLS as f64);
         let ys: Vec<f64> = (0..=TABLE_CELLS)
@@ -210,12 +257,15 @@ impl Table {
                     decay,
                     noise: (1.0 - decay * decay).max(0.0).sqrt(),
                     drift: t * (1.0 - decay),
+                    tangential: g(y),
+                    tangential_rise: 0.0,
                 }
             })
             .collect();
         for i in 0..nodes.len() - 1 {
             nodes[i].rise = nodes[i + 1].sigma - nodes[i].sigma;
             nodes[i].slope = nodes[i].rise / (ys[i + 1] - ys[i]);
+            nodes[i].tangential_rise = nodes[i + 1].tangential - nodes[i].tangential;
         }
         for node in &mut nodes {
             node.drift = if drift { node.drift * node.slope } else { 0.0 };
@@ -243,6 +293,11 @@ impl Table {
         self.nodes.iter().map(|n| n.slope.abs()).fold(0.0, f64::max)
     }
 
+    /// The largest tangential factor of the table.
+    pub fn largest_tangential(&self) -> f64 {
+        self.nodes.iter().map(|n| n.tangential).fold(0.0, f64::max)
+    }
+
     /// The profile at distance `y >= 0` (m), clamped to the table's range.
     #[inline(always)]
     pub fn at(&self, y: f64) -> Node {
@@ -250,7 +305,7 @@ impl Table {
         let a = self.nodes[i];
         // sigma is interpolated (the fluid velocity seen is continuous in y); the time-scale
         // factors and the slope are the cell's own (T_L changes little across a cell).
-        Node { sigma: a.sigma + f * a.rise, ..a }
+        Node { sigma: a.sigma + f * a.rise, tangential: a.tangential + f * a.tangential_rise, ..a }
     }
 
     /// [`Table::at`] for the four distances of the tracker's four lanes, bit for bit. With
@@ -273,11 +328,13 @@ impl Table {
             decay: n.map(|n| n.decay),
             noise: n.map(|n| n.noise),
             drift: n.map(|n| n.drift),
+            tangential: n.map(|n| n.tangential),
+            tangential_rise: n.map(|n| n.tangential_rise),
         }
     }
 
     /// [`Table::at4`] in AVX2: [`Table::locate`] with a vector floor and conversion (both
-    /// exact here), then each lane's node loaded whole (32 + 16 bytes) and transposed.
+    /// exact here), then each lane's node loaded whole (two 32-byte halves) and transposed.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn at4_avx2(&self, y: [f64; 4]) -> Nodes4 {
@@ -296,9 +353,9 @@ impl Table {
         let cell = _mm256_floor_pd(_mm256_min_pd(s, splat((NODES - 2) as f64)));
         let f = _mm256_min_pd(_mm256_sub_pd(s, cell), splat(1.0));
         // `0 <= cell <= NODES - 2`, an integer: the conversion is exact and the nodes below
-        // are within the table. A node is six f64s.
+        // are within the table. A node is eight f64s.
         let i = _mm256_cvttpd_epi32(cell);
-        let at = _mm_add_epi32(_mm_slli_epi32::<2>(i), _mm_slli_epi32::<1>(i));
+        let at = _mm_slli_epi32::<3>(i);
         let base = self.nodes.as_ptr().cast::<f64>();
         let lane = |k: i32| base.wrapping_add(k as usize);
         let p = [
@@ -307,28 +364,18 @@ impl Table {
             lane(_mm_extract_epi32::<2>(at)),
             lane(_mm_extract_epi32::<3>(at)),
         ];
-        // SAFETY: each `p` is the first of a node's six f64s, within the table.
-        let (head, tail) = unsafe {
-            (
-                p.map(|p| _mm256_loadu_pd(p)),
-                [
-                    _mm256_insertf128_pd::<1>(
-                        _mm256_castpd128_pd256(_mm_loadu_pd(p[0].add(4))),
-                        _mm_loadu_pd(p[2].add(4)),
-                    ),
-                    _mm256_insertf128_pd::<1>(
-                        _mm256_castpd128_pd256(_mm_loadu_pd(p[1].add(4))),
-                        _mm_loadu_pd(p[3].add(4)),
-                    ),
-                ],
-            )
-        };
-        // head[l] = (sigma, rise, slope, decay) of lane l; tail = (noise, drift) of lanes 0, 2
-        // and 1, 3.
+        // SAFETY: each `p` is the first of a node's eight f64s, within the table.
+        let (head, tail) = unsafe { (p.map(|p| _mm256_loadu_pd(p)), p.map(|p| _mm256_loadu_pd(p.add(4)))) };
+        // head[l] = (sigma, rise, slope, decay) of lane l; tail[l] = (noise, drift, tangential,
+        // tangential_rise).
         let (t0, t1) = (_mm256_unpacklo_pd(head[0], head[1]), _mm256_unpackhi_pd(head[0], head[1]));
         let (t2, t3) = (_mm256_unpacklo_pd(head[2], head[3]), _mm256_unpackhi_pd(head[2], head[3]));
+        let (u0, u1) = (_mm256_unpacklo_pd(tail[0], tail[1]), _mm256_unpackhi_pd(tail[0], tail[1]));
+        let (u2, u3) = (_mm256_unpacklo_pd(tail[2], tail[3]), _mm256_unpackhi_pd(tail[2], tail[3]));
         let rise = _mm256_permute2f128_pd::<0x20>(t1, t3);
         let sigma = _mm256_add_pd(_mm256_permute2f128_pd::<0x20>(t0, t2), _mm256_mul_pd(f, rise));
+        let tangential_rise = _mm256_permute2f128_pd::<0x31>(u1, u3);
+        let tangential = _mm256_add_pd(_mm256_permute2f128_pd::<0x31>(u0, u2), _mm256_mul_pd(f, tangential_rise));
         let lanes = |v: __m256d| -> [f64; 4] {
             let mut a = [0.0; 4];
             // SAFETY: `a` holds four f64s.
@@ -340,8 +387,10 @@ impl Table {
             rise: lanes(rise),
             slope: lanes(_mm256_permute2f128_pd::<0x31>(t0, t2)),
             decay: lanes(_mm256_permute2f128_pd::<0x31>(t1, t3)),
-            noise: lanes(_mm256_unpacklo_pd(tail[0], tail[1])),
-            drift: lanes(_mm256_unpackhi_pd(tail[0], tail[1])),
+            noise: lanes(_mm256_permute2f128_pd::<0x20>(u0, u2)),
+            drift: lanes(_mm256_permute2f128_pd::<0x20>(u1, u3)),
+            tangential: lanes(tangential),
+            tangential_rise: lanes(tangential_rise),
         }
     }
 }
@@ -355,6 +404,15 @@ pub(crate) struct Nodes4 {
     pub decay: [f64; 4],
     pub noise: [f64; 4],
     pub drift: [f64; 4],
+    pub tangential: [f64; 4],
+    pub tangential_rise: [f64; 4],
+}
+
+/// The tangential factors `[g_1 g_2, g_0 g_2, g_0 g_1]` of the three components from the
+/// factors `g_a` read at their distances along the three axes (see the module doc).
+#[inline(always)]
+pub(crate) fn tangential_products(g: [f64; 3]) -> [f64; 3] {
+    [g[1] * g[2], g[0] * g[2], g[0] * g[1]]
 }
 
 impl Nodes4 {
@@ -368,6 +426,8 @@ impl Nodes4 {
             decay: self.decay[l],
             noise: self.noise[l],
             drift: self.drift[l],
+            tangential: self.tangential[l],
+            tangential_rise: self.tangential_rise[l],
         }
     }
 }
@@ -407,6 +467,11 @@ pub(crate) struct FlowField {
     pub profile: Option<Table>,
     /// The three fluctuating components, when turbulent.
     pub turbulence: Option<[Component; 3]>,
+    /// A room's components are damped along walls: component `i` is scaled by the
+    /// tangential factors `g` (in its table's nodes, 1 in the core) of its distances along
+    /// the two other axes (see the module doc). Not in a channel, whose components already
+    /// follow their own profiles (there every node's factor is 1).
+    pub tangential: bool,
 }
 
 impl FlowField {
@@ -414,16 +479,22 @@ impl FlowField {
     /// `max |d sigma_i / dx_i|`, 1/s (zero without turbulence): what the well-mixed drift
     /// corrects for. (A channel's streamwise and spanwise rms change across the channel, not
     /// along their own directions, and need no drift.)
+    /// In a room each is the wall-normal slope times the tangential factors of the two other
+    /// axes, bounded here by the largest factor squared.
     pub fn steepest_gradient(&self) -> f64 {
         let along_own_axis = |(i, c): (usize, &Component)| (c.axis == i).then(|| c.table.steepest());
-        self.turbulence.iter().flat_map(|t| t.iter().enumerate().filter_map(along_own_axis)).fold(0.0, f64::max)
+        let steepest =
+            self.turbulence.iter().flat_map(|t| t.iter().enumerate().filter_map(along_own_axis)).fold(0.0, f64::max);
+        let largest = |t: &[Component; 3]| t.iter().map(|c| c.table.largest_tangential()).fold(0.0, f64::max);
+        let g = self.turbulence.as_ref().filter(|_| self.tangential).map_or(1.0, largest);
+        steepest * g * g
     }
 
     /// Tabulates `flow` for a domain of `size` (m), kinematic viscosity `nu` (m^2/s) and step
     /// `dt` (s). `drift_correction = false` drops the well-mixed drift (for comparison only).
     pub fn new(flow: &Flow, size: [f64; 3], nu: f64, dt: f64, drift_correction: bool) -> Self {
         let half = size.map(|l| 0.5 * l);
-        let mut field = FlowField { uniform: [0.0; 3], profile: None, turbulence: None };
+        let mut field = FlowField { uniform: [0.0; 3], profile: None, turbulence: None, tangential: false };
         match *flow {
             Flow::Still => {}
             Flow::Uniform { velocity } => field.uniform = velocity,
@@ -470,9 +541,19 @@ impl FlowField {
                 let core = y_peak + blend_length;
                 let y_max = half.iter().copied().fold(0.0, f64::max);
                 let y_end = (core * (1.0 + 4.0 / TABLE_CELLS as f64)).min(y_max);
-                let table = Table::new(y_end, split, dt, drift_correction, profile);
+                let t_peak = us * tangential_rms(ROOM_PEAK_Y_PLUS);
+                let tangential = move |y: f64| {
+                    let sigma = if y <= y_peak {
+                        us * tangential_rms(y * plus)
+                    } else {
+                        t_peak + ((y - y_peak) / blend_length).min(1.0) * (core_rms - t_peak)
+                    };
+                    sigma / core_rms
+                };
+                let table = Table::with_tangential(y_end, split, dt, drift_correction, profile, tangential);
                 let comp = |axis| Component { table: table.clone(), axis };
                 field.turbulence = Some([comp(0), comp(1), comp(2)]);
+                field.tangential = true;
             }
         }
         field
@@ -613,5 +694,38 @@ mod tests {
         // All three components read one table.
         let [a, b, c] = field.turbulence.as_ref().unwrap();
         assert!(Arc::ptr_eq(&a.table.nodes, &b.table.nodes) && Arc::ptr_eq(&b.table.nodes, &c.table.nodes));
+    }
+
+    #[test]
+    fn room_components_along_a_wall_take_its_tangential_profile() {
+        // u* = 1 cm/s, nu = 1.5e-5 m^2/s: y+ = 1 at 1.5 mm. By hand, u+_rms(1) = 0.4 / 1.0239
+        // = 0.390663, w+_rms(1) = 0.19 / 1.0361 = 0.183380, t+_rms = sqrt((0.152618 +
+        // 0.033628) / 2) = 0.305161, and g = 0.305161 * 0.01 / 0.05 = 0.0610322.
+        assert!((tangential_rms(1.0) - 0.305161).abs() < 1e-6, "{}", tangential_rms(1.0));
+        let field = FlowField::new(&Flow::indoor_room(), [4.0, 3.0, 2.5], 1.5e-5, 0.05, true);
+        assert!(field.tangential);
+        let table = &field.turbulence.as_ref().unwrap()[0].table;
+        let factors = |d: [f64; 3]| tangential_products(d.map(|d| table.at(d).tangential));
+        let near_floor = factors([2.0, 1.5, 1.5e-3]);
+        for g in &near_floor[..2] {
+            assert!((g - 0.0610322).abs() < 2e-5, "{g}");
+        }
+        // The floor's own normal component is not damped by the floor, nor is anything in the
+        // core; in a corner two walls damp together.
+        assert_eq!(near_floor[2], 1.0);
+        assert_eq!(factors([2.0, 1.5, 1.2]), [1.0; 3]);
+        let corner = factors([1.5e-3, 1.5, 1.5e-3]);
+        assert!((corner[1] - 0.0610322 * 0.0610322).abs() < 1e-5, "{corner:?}");
+        // At the profile's peak the tangential value joins the blend continuously.
+        let y_peak = ROOM_PEAK_Y_PLUS * 1.5e-5 / 0.01;
+        let (below, above) = (table.at(y_peak * 0.999).tangential, table.at(y_peak * 1.001).tangential);
+        assert!((below - above).abs() < 1e-3, "{below} {above}");
+        assert!((below - 0.01 * tangential_rms(ROOM_PEAK_Y_PLUS) / 0.05).abs() < 1e-3);
+        // A channel's nodes carry 1.
+        let channel =
+            FlowField::new(&Flow::TurbulentChannel { friction_velocity: 0.3 }, [1.0, 1.0, 0.02], 1.5e-5, 1e-5, true);
+        assert!(!channel.tangential);
+        let wall_normal = &channel.turbulence.as_ref().unwrap()[2].table;
+        assert!([0.0, 1e-5, 0.01].iter().all(|&y| wall_normal.at(y).tangential == 1.0));
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use crate::flow::{Component, FlowField, Node};
+use crate::flow::{tangential_products, Component, FlowField, Node};
 use crate::furnishing::{axis_distance, Furnishing};
 
 use super::wall_distance;
@@ -17,9 +17,12 @@ pub(super) fn fluid_velocity<const TURB: bool>(field: &FlowField, size: [f64; 3]
     }
     if TURB {
         if let Some(turb) = &field.turbulence {
-            for (a, comp) in turb.iter().enumerate() {
-                let (d, _) = wall_distance(x.to_array()[comp.axis], size[comp.axis]);
-                u[a] += comp.table.at(d).sigma * zeta[a];
+            let at = |comp: &Component| comp.table.at(wall_distance(x.to_array()[comp.axis], size[comp.axis]).0);
+            // Arrays written out: `array::map` here was left as a call per element.
+            let nodes = [at(&turb[0]), at(&turb[1]), at(&turb[2])];
+            let g = tangential_products([nodes[0].tangential, nodes[1].tangential, nodes[2].tangential]);
+            for a in 0..3 {
+                u[a] += g[a] * (nodes[a].sigma * zeta[a]);
             }
         }
     }
@@ -30,7 +33,9 @@ pub(super) fn fluid_velocity<const TURB: bool>(field: &FlowField, size: [f64; 3]
 /// component's profile taken at its distance to the nearest surface along its axis, room
 /// wall or furnishing face ([`axis_distance`]); with `normals`, `zeta` is then taken one
 /// exact Ornstein-Uhlenbeck step there ([`langevin_step`]), with the drift's sign that of
-/// the change of that distance along the axis.
+/// the change of that distance along the axis. The components along a surface are damped
+/// by the room's walls only (see the comment below): a box's faces shape the component
+/// across them, not those along them.
 #[inline]
 pub(super) fn furnished_fluid_velocity(
     field: &FlowField,
@@ -46,16 +51,23 @@ pub(super) fn furnished_fluid_velocity(
     }
     if let Some(turb) = &field.turbulence {
         let at = x.to_array();
-        for (a, comp) in turb.iter().enumerate() {
-            let (d, sign) = axis_distance(at, comp.axis, size[comp.axis], boxes);
-            let node = comp.table.at(d);
+        let distance = |comp: &Component| axis_distance(at, comp.axis, size[comp.axis], boxes);
+        let ds = [distance(&turb[0]), distance(&turb[1]), distance(&turb[2])];
+        let nodes = [turb[0].table.at(ds[0].0), turb[1].table.at(ds[1].0), turb[2].table.at(ds[2].0)];
+        // The tangential factors from the room's walls alone: the distance to the nearest
+        // surface along an axis jumps where a box's shadow begins, and a factor that jumped
+        // along another component's own axis would break the well-mixed condition there.
+        let tangential = |comp: &Component| comp.table.at(wall_distance(at[comp.axis], size[comp.axis]).0).tangential;
+        let g = tangential_products([tangential(&turb[0]), tangential(&turb[1]), tangential(&turb[2])]);
+        for a in 0..3 {
+            let sign = ds[a].1;
             match normals {
                 Some(normals) => {
-                    let (du, next) = langevin_step(&node, sign, zeta[a], normals[a]);
+                    let (du, next) = langevin_step(&nodes[a], g[a], sign, zeta[a], normals[a]);
                     u[a] += du;
                     zeta[a] = next;
                 }
-                None => u[a] += node.sigma * zeta[a],
+                None => u[a] += g[a] * (nodes[a].sigma * zeta[a]),
             }
         }
     }
@@ -94,8 +106,13 @@ pub(super) fn fluid_velocity_and_fluctuation(
 ) -> DVec3 {
     let mut u = fluid_velocity::<false>(field, size, x, zeta);
     if let Some(turb) = &field.turbulence {
-        for (a, comp) in turb.iter().enumerate() {
-            let (du, next) = fluctuation(comp, x.to_array()[comp.axis], size[comp.axis], zeta[a], normals[a]);
+        let distance = |comp: &Component| wall_distance(x.to_array()[comp.axis], size[comp.axis]);
+        // Arrays written out: `array::map` here was left as a call per element.
+        let ds = [distance(&turb[0]), distance(&turb[1]), distance(&turb[2])];
+        let nodes = [turb[0].table.at(ds[0].0), turb[1].table.at(ds[1].0), turb[2].table.at(ds[2].0)];
+        let g = tangential_products([nodes[0].tangential, nodes[1].tangential, nodes[2].tangential]);
+        for a in 0..3 {
+            let (du, next) = langevin_step(&nodes[a], g[a], ds[a].1, zeta[a], normals[a]);
             u[a] += du;
             zeta[a] = next;
         }
@@ -103,21 +120,14 @@ pub(super) fn fluid_velocity_and_fluctuation(
     u
 }
 
-/// One fluctuating component at coordinate `c` across a domain of `length` (m): the velocity
-/// `sigma zeta` it adds to the fluid's, and `zeta` after one step ([`langevin_step`]).
+/// The velocity `g sigma zeta` a fluctuating component adds to the fluid's at `node`, with
+/// `g` its tangential factor ([`tangential_products`]; 1 in a channel), and `zeta` after one
+/// exact Ornstein-Uhlenbeck step driven by the standard normal `normal`, with the well-mixed
+/// drift where the table has one (`sign` the sign of `d(distance)/d(coordinate)`; the drift
+/// follows the slope of `g sigma`, so it is scaled by `g` too).
 #[inline(always)]
-pub(super) fn fluctuation(comp: &Component, c: f64, length: f64, zeta: f64, normal: f64) -> (f64, f64) {
-    let (d, sign) = wall_distance(c, length);
-    langevin_step(&comp.table.at(d), sign, zeta, normal)
-}
-
-/// The velocity `sigma zeta` a fluctuating component adds to the fluid's at `node` (with
-/// `sign` the sign of `d(distance)/d(coordinate)`), and `zeta` after one exact
-/// Ornstein-Uhlenbeck step (with the well-mixed drift where the table has one) driven by the
-/// standard normal `normal`.
-#[inline(always)]
-pub(super) fn langevin_step(node: &Node, sign: f64, zeta: f64, normal: f64) -> (f64, f64) {
-    (node.sigma * zeta, zeta * node.decay + sign * node.drift + node.noise * normal)
+pub(super) fn langevin_step(node: &Node, g: f64, sign: f64, zeta: f64, normal: f64) -> (f64, f64) {
+    (g * (node.sigma * zeta), (zeta * node.decay + node.noise * normal) + g * (sign * node.drift))
 }
 
 #[cfg(test)]

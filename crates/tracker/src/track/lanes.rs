@@ -16,6 +16,7 @@ use super::{
     brownian_increment, inject, normals_per_step, relaxed, run_particle, wall_distance, Body, Fate, Injected, Prepared,
     Record, State, StepNormals, WallTally,
 };
+use crate::flow::tangential_products;
 
 /// Particles stepped side by side by [`run_lanes`].
 const WIDTH: usize = 4;
@@ -288,15 +289,19 @@ fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
         }
     }
     if let Some(turb) = field.turbulence.as_ref().filter(|_| TURB) {
+        let (mut d, mut sign) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
         for (a, comp) in turb.iter().enumerate() {
-            let (mut d, mut sign) = ([0.0; WIDTH], [0.0; WIDTH]);
             for l in 0..WIDTH {
-                (d[l], sign[l]) = wall_distance(x[comp.axis][l], size[comp.axis]);
+                (d[a][l], sign[a][l]) = wall_distance(x[comp.axis][l], size[comp.axis]);
             }
-            // (With AVX2 a turbulent step never gets here: it is `step_lanes_avx2`.)
-            let nodes = comp.table.at4::<false>(d);
-            for l in 0..WIDTH {
-                let (du, next) = langevin_step(&nodes.lane(l), sign[l], zeta[a][l], z[l][a]);
+        }
+        // (With AVX2 a turbulent step never gets here: it is `step_lanes_avx2`.)
+        let nodes =
+            [turb[0].table.at4::<false>(d[0]), turb[1].table.at4::<false>(d[1]), turb[2].table.at4::<false>(d[2])];
+        for l in 0..WIDTH {
+            let g = tangential_products([nodes[0].tangential[l], nodes[1].tangential[l], nodes[2].tangential[l]]);
+            for a in 0..3 {
+                let (du, next) = langevin_step(&nodes[a].lane(l), g[a], sign[a][l], zeta[a][l], z[l][a]);
                 uf[a][l] += du;
                 zeta[a][l] = next;
             }
@@ -375,15 +380,32 @@ fn step_lanes_avx2<const BROWN: bool>(
         let (d, _) = distance(2);
         uf[0] = _mm256_add_pd(uf[0], load(&profile.at4::<true>(lanes(d)).sigma));
     }
-    // `fluctuation` of each component (`langevin_step`).
-    for (a, comp) in field.turbulence.iter().flatten().enumerate() {
-        let (d, sign) = distance(comp.axis);
-        let node = comp.table.at4::<true>(lanes(d));
-        let z0 = load(&zeta[a]);
-        let du = _mm256_mul_pd(load(&node.sigma), z0);
-        let drifted = _mm256_add_pd(_mm256_mul_pd(z0, load(&node.decay)), _mm256_mul_pd(sign, load(&node.drift)));
-        zeta[a] = lanes(_mm256_add_pd(drifted, _mm256_mul_pd(load(&node.noise), normal[a])));
-        uf[a] = _mm256_add_pd(uf[a], du);
+    // `fluctuation` of each component (`langevin_step`): each component's node consumed as
+    // it is read, keeping only what the tangential factors (`tangential_products` of the
+    // three nodes' factors, where the flow has them) then scale.
+    if let Some(turb) = field.turbulence.as_ref() {
+        let mut parts = [(_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()); 3];
+        for (a, comp) in turb.iter().enumerate() {
+            let (d, sign) = distance(comp.axis);
+            let node = comp.table.at4::<true>(lanes(d));
+            let z0 = load(&zeta[a]);
+            let moved = _mm256_mul_pd(load(&node.sigma), z0);
+            let relaxed =
+                _mm256_add_pd(_mm256_mul_pd(z0, load(&node.decay)), _mm256_mul_pd(load(&node.noise), normal[a]));
+            parts[a] = (moved, relaxed, _mm256_mul_pd(sign, load(&node.drift)), load(&node.tangential));
+        }
+        let g = field.tangential.then(|| {
+            let t = parts.map(|p| p.3);
+            [_mm256_mul_pd(t[1], t[2]), _mm256_mul_pd(t[0], t[2]), _mm256_mul_pd(t[0], t[1])]
+        });
+        for (a, &(moved, relaxed, drift, _)) in parts.iter().enumerate() {
+            let (du, drift) = match g {
+                Some(g) => (_mm256_mul_pd(g[a], moved), _mm256_mul_pd(g[a], drift)),
+                None => (moved, drift),
+            };
+            zeta[a] = lanes(_mm256_add_pd(relaxed, drift));
+            uf[a] = _mm256_add_pd(uf[a], du);
+        }
     }
     // `brownian_increment` and `relaxed` along each axis.
     let [sx, cxv, sv] = c.brownian.map(|k| load(&k));
