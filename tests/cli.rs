@@ -437,7 +437,7 @@ fn room_reports_the_decay_curve_and_where_the_release_ends() {
     let scene = dir.join("ventilated.toml");
     std::fs::write(
         &scene,
-        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [10e-6]\ncount = 300\ntarget_error = 0.0\ndensity = 1500.0\n\
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [10e-6]\ncount = 300\ntarget_error = 0.0\n\
          [ventilation]\nair_changes_per_hour = 2.0\n[run]\ndt = 0.05\nduration = 300.0\n",
     )
     .unwrap();
@@ -484,7 +484,7 @@ fn room_reports_the_decay_curve_and_where_the_release_ends() {
     assert_eq!(csv.lines().next(), Some("diameter_um,density_kg_m3,time_s,airborne,error,count"));
     assert_eq!(csv.lines().count(), 42);
     let first: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
-    assert_eq!(first[1].parse::<f64>().unwrap(), 1500.0, "{csv}");
+    assert_eq!(first[1].parse::<f64>().unwrap(), 1000.0, "the default density: {csv}");
     let svg = std::fs::read_to_string(plots.join("room-decay.svg")).unwrap();
     assert!(legend_y(&svg, "10 um (depo, +- 1 s.e.)") > 500.0);
     assert!(svg.contains("10 um: fit, beta = "), "the fitted line is in the legend");
