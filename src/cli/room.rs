@@ -8,6 +8,7 @@ use depo::tracker::correlations::LaiNazaroff;
 use depo::tracker::decay::MIN_AIRBORNE;
 use depo::tracker::distribution::{first_seen, DistributionStudy};
 use depo::tracker::furnishing::FACE_NAMES;
+use depo::tracker::geometry::in_plane_axes;
 use depo::tracker::studies::MAP_BINS;
 use depo::tracker::studies::{RoomPoint, RoomStudy};
 use depo::tracker::{binomial_error, DecayCurve, Estimate, Flow, Geometry, WallTally};
@@ -995,11 +996,7 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
                 Some(k) => (study.scene.furnishings[k].low, study.scene.furnishings[k].high),
                 None => ([0.0; 3], size),
             };
-            let (a, b) = match wall.axis {
-                0 => (1, 2),
-                1 => (0, 2),
-                _ => (0, 1),
-            };
+            let [a, b] = in_plane_axes(wall.axis);
             let cell = [(high[a] - low[a]) / MAP_BINS[0] as f64, (high[b] - low[b]) / MAP_BINS[1] as f64];
             let mut text = format!(
                 "# depo room deposition map: {} {name} ({} = {} m), particle diameter {label} um, density {} kg/m^3; \

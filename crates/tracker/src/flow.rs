@@ -605,7 +605,8 @@ mod tests {
 
     #[test]
     fn four_lane_lookups_are_the_scalar_lookups_bit_for_bit() {
-        let table = Table::new(1.0, 0.25, 0.1, true, |y| (y.sqrt() + y * y, 0.5 + y));
+        // With a tangential factor that varies too, so its transposition is checked.
+        let table = Table::with_tangential(1.0, 0.25, 0.1, true, |y| (y.sqrt() + y * y, 0.5 + y), |y| 0.2 + y.cbrt());
         let fine = 0.25 / TABLE_CELLS as f64;
         let mut ys =
             vec![0.0, -0.0, -1.0, 0.25, 1.0, 1.0 + 1e-9, 7.0, 1e300, f64::INFINITY, f64::NAN, f64::NEG_INFINITY];
@@ -615,7 +616,9 @@ mod tests {
         }
         ys.extend((0..4000).map(|k| 1.1 * f64::from(k) / 4000.0));
         let same = |a: Node, b: Node| {
-            let bits = |n: Node| [n.sigma, n.rise, n.slope, n.decay, n.noise, n.drift].map(f64::to_bits);
+            let bits = |n: Node| {
+                [n.sigma, n.rise, n.slope, n.decay, n.noise, n.drift, n.tangential, n.tangential_rise].map(f64::to_bits)
+            };
             bits(a) == bits(b)
         };
         #[cfg(target_arch = "x86_64")]

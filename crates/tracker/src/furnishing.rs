@@ -55,7 +55,7 @@
 //! is the room's volume less the boxes' ([`free_volume`]), and it is the volume of the room's
 //! well-mixed concentration, its deposition velocities and loss rate.
 
-use crate::geometry::{Orientation, Wall};
+use crate::geometry::{Orientation, Wall, WALL_AXES};
 use crate::scene::WallBehaviour;
 
 /// The names of a box's faces, in face order.
@@ -112,7 +112,7 @@ impl Furnishing {
     #[must_use]
     pub fn faces(&self, k: usize) -> [Wall; 6] {
         std::array::from_fn(|f| {
-            let axis = [2, 0, 1][f / 2];
+            let axis = WALL_AXES[f / 2];
             let at_high = f % 2 == 1;
             let extent = |a: usize| self.high[a] - self.low[a];
             Wall {

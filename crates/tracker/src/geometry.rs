@@ -40,6 +40,20 @@ impl Orientation {
     }
 }
 
+/// The axes the pairs of a room's walls are normal to, in id order: z (the floor, 0, and the
+/// ceiling, 1), x (2 and 3), y (4 and 5); a furnishing's faces follow the same order.
+pub const WALL_AXES: [usize; 3] = [2, 0, 1];
+
+/// The two axes in the plane of a surface normal to `axis`, in the order x, y, z.
+#[must_use]
+pub fn in_plane_axes(axis: usize) -> [usize; 2] {
+    match axis {
+        0 => [1, 2],
+        1 => [0, 2],
+        _ => [0, 1],
+    }
+}
+
 /// One wall, or one face of a furnishing ([`crate::furnishing`]): the axis it is normal to,
 /// the side it faces and its plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -126,7 +140,7 @@ impl Geometry {
         let size = self.size();
         let walled = self.walled();
         let mut walls = Vec::new();
-        for axis in [2, 0, 1] {
+        for axis in WALL_AXES {
             if !walled[axis] {
                 continue;
             }

@@ -80,7 +80,7 @@
 //! the exhausted in the run's balance. A supply opening is part of its wall for particles
 //! (the wall's behaviour acts there); it brings in clean air only.
 
-use crate::geometry::Geometry;
+use crate::geometry::{in_plane_axes, Geometry, WALL_AXES};
 use crate::scene::SceneError;
 
 /// Cells of the mean-flow grid along the room's longest side.
@@ -113,19 +113,10 @@ pub struct Opening {
     pub flow: f64,
 }
 
-/// The two in-plane axes of a wall normal to `axis`, in the order x, y, z.
-#[must_use]
-pub fn in_plane_axes(axis: usize) -> [usize; 2] {
-    match axis {
-        0 => [1, 2],
-        1 => [0, 2],
-        _ => [0, 1],
-    }
-}
-
-/// The axis a room wall is normal to and whether it is at the upper end of it, by id.
+/// The axis a room wall is normal to and whether it is at the upper end of it, by id (as
+/// [`Geometry::walls`] numbers them).
 fn wall_axis(wall: usize) -> (usize, bool) {
-    ([2, 0, 1][wall / 2], wall % 2 == 1)
+    (WALL_AXES[wall / 2], wall % 2 == 1)
 }
 
 impl Opening {

@@ -21,7 +21,7 @@
 
 use rayon::prelude::*;
 
-use crate::geometry::{Orientation, Wall};
+use crate::geometry::{in_plane_axes, Orientation, Wall};
 use crate::scene::{Injection, Scene, SceneError};
 use crate::track::{track, track_excursions, Fate, ParticleTally, Prepared, Record, WallTally};
 
@@ -390,11 +390,7 @@ impl Run {
     pub fn deposition_map_within(&self, wall: usize, low: [f64; 3], high: [f64; 3], bins: [usize; 2]) -> Vec<u32> {
         let size: [f64; 3] = std::array::from_fn(|a| high[a] - low[a]);
         let axis = self.walls[wall].axis;
-        let (a, b) = match axis {
-            0 => (1, 2),
-            1 => (0, 2),
-            _ => (0, 1),
-        };
+        let [a, b] = in_plane_axes(axis);
         let mut map = vec![0u32; bins[0] * bins[1]];
         for r in self.records.iter().filter(|r| r.fate == Fate::Deposited(wall)) {
             let i = (((r.position[a] - low[a]) / size[a] * bins[0] as f64).max(0.0) as usize).min(bins[0] - 1);

@@ -5,7 +5,7 @@ use depo_wall_model::energy::{energy_loss, EnergyLoss};
 use glam::DVec3;
 
 use crate::furnishing::ROOM_SURFACES;
-use crate::geometry::Wall;
+use crate::geometry::{Wall, WALL_AXES};
 use crate::scene::WallBehaviour;
 
 use super::{relaxed, Body, Fate, Prepared, State, WallTally, BISECTIONS, MAX_CONTACTS};
@@ -85,7 +85,7 @@ pub(super) fn inside(x: DVec3, r: f64, p: &Prepared<'_>) -> bool {
 fn entry_face(p: &Prepared<'_>, k: usize, x: DVec3, r: f64) -> Wall {
     let b = &p.boxes[k];
     let (mut best, mut face) = (f64::NEG_INFINITY, 0);
-    for (i, axis) in [2, 0, 1].into_iter().enumerate() {
+    for (i, axis) in WALL_AXES.into_iter().enumerate() {
         let below = (b.low[axis] - r) - x[axis];
         let above = x[axis] - (b.high[axis] + r);
         if below > best {
