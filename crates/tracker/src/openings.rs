@@ -68,9 +68,7 @@
 //! wall is taken at the particle's own position, the opening's face velocity within an
 //! opening and zero outside, rather than the wall face's average. Where an opening's edge
 //! cuts a wall face, the average would push air, and the particles in it, against the solid
-//! wall beside the opening, and a sink wall would collect them there (at 0.1 um in the
-//! default room with the example's openings, 11 % of the release deposited on the walls
-//! within a cell of the exhaust in an hour, against 0.3 % with the uniform exhaust). With the
+//! wall beside the opening, and a sink wall would collect them there. With the
 //! wall's own value the normal flow on a wall is exactly the prescribed one, and only those
 //! few cells are not divergence-free within themselves (they are on the whole).
 //!

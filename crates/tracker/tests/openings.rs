@@ -23,11 +23,11 @@ fn stirred_room(q: f64) -> Scene {
 
 /// Tracers between mirrors in a well-mixed room leave through the exhaust alone, and the
 /// airborne number decays at the exchange rate `Q / V` (here 0.0025 1/s, 9 air changes an
-/// hour, so that the run is short), within three standard errors of the decay fit (2.2 %):
-/// so neither `2 Q / V` nor no exhaust would pass (here 0.995 +- 0.022 times `Q / V`). The
-/// room is well mixed to a few per cent: at 8000 particles the rate was 0.990 +- 0.016 times
-/// `Q / V` with the openings at the two ends of the ceiling, and 1.036 +- 0.017 with the
-/// supply high on one wall and the exhaust low on the opposite one (it displaces the room's
+/// hour, so that the run is short), within three standard errors of the decay fit (2.4 %):
+/// so neither `2 Q / V` nor no exhaust would pass (here 1.048 +- 0.024 times `Q / V`). The
+/// room is well mixed to a few per cent (the damping of the fluctuations along its walls,
+/// within 13 cm of each, keeps it from doing better); with the supply high on one wall and
+/// the exhaust low on the opposite one the exhaust sees older air (it displaces the room's
 /// air towards the exhaust). A room stirred less is mixed less (see `depo_tracker::openings`
 /// and docs/tracker.md).
 #[test]
