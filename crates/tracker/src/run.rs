@@ -25,8 +25,10 @@ use crate::geometry::{in_plane_axes, Orientation, Wall};
 use crate::scene::{Injection, Scene, SceneError};
 use crate::track::{track, track_excursions, Fate, ParticleTally, Prepared, Record, WallTally};
 
-/// Particles per chunk of work (fixed, so the sums do not depend on the thread count).
-const CHUNK: usize = 256;
+/// Particles per chunk of work: fixed, so the sums do not depend on the thread count, and
+/// small, so that a run's last chunks end together on every thread (a study runs a size in
+/// up to three parts, each ending at a barrier).
+const CHUNK: usize = 8;
 
 /// The most `dt |d sigma / dy|` may be: beyond it the dispersion model's step leaves tracers
 /// far from well mixed near steep rms gradients. Tracers between mirrors in a room: within 2 cm
