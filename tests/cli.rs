@@ -540,6 +540,11 @@ fn channel_reports_v_plus_beside_wood() {
     let svg = std::fs::read_to_string(&figure).unwrap();
     assert_eq!(polylines(&svg, "").iter().filter(|&&n| n == 100).count(), 2, "{:?}", polylines(&svg, ""));
     assert!(legend_y(&svg, "Wood (1981)") > 500.0);
+    // Beside them, measured: Sippola & Nazaroff's 16 steel-duct tests, whose smallest tau+
+    // (1 um at u* = 0.12 m/s, 0.0046) stretches the correlations' range below the run's.
+    assert!(legend_y(&svg, "Sippola & Nazaroff (2004), duct side wall, measured") > 500.0);
+    let circles = svg.matches("<circle").count();
+    assert!(circles > 16, "{circles} circles: the 16 measurements and depo's point");
 }
 
 #[test]

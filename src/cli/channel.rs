@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use depo::tracker::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
+use depo::tracker::measurements::SIPPOLA_NAZAROFF_2004;
 use depo::tracker::Geometry;
 use serde::Serialize;
 
@@ -178,10 +179,16 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
         }
     }
     if let Some(path) = &args.plot {
-        // The correlations on 100 tau+ values across the study's, each at the diameter and
-        // Schmidt number the study would give that tau+ (its particles, air and u*).
+        // The correlations on 100 tau+ values across the study's and the measurements', each
+        // at the diameter and Schmidt number the study would give that tau+ (its particles,
+        // air and u*).
         let air = &study.scene.air;
-        let (lo, hi) = study.tau_plus.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &t| (a.min(t), b.max(t)));
+        let measured: Vec<(f64, f64)> = SIPPOLA_NAZAROFF_2004.iter().map(|t| (t.tau_plus(air), t.v_plus)).collect();
+        let (lo, hi) = study
+            .tau_plus
+            .iter()
+            .chain(measured.iter().map(|(t, _)| t))
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &t| (a.min(t), b.max(t)));
         let model: Vec<(f64, f64)> = log_grid(lo, hi, 100)
             .into_iter()
             .filter_map(|tp| diameter_for_tau_plus(tp, study.density, air, u_star).map(|d| (tp, schmidt(d, air))))
@@ -198,6 +205,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 "Papavergos & Hedley (1984)",
                 model.iter().map(|&(tp, sc)| (tp, papavergos_hedley(tp, sc))).collect(),
             ),
+            Series::markers("Sippola & Nazaroff (2004), duct side wall, measured", measured),
         ];
         if !bounds.is_empty() {
             series.push(Series::upper_bounds("depo: no deposit, 95 % upper bound", bounds).color(0));

@@ -37,6 +37,8 @@
 //!   for all of it and for PM2.5 and PM10.
 //! - [`correlations`]: what to compare with: Lai & Nazaroff (2000) for rooms, Wood (1981) and
 //!   Papavergos & Hedley (1984) for channels.
+//! - [`measurements`]: measured deposition beside them: Sippola & Nazaroff's (2004) duct
+//!   side walls.
 //!
 //! SI units throughout; `z` is up in a room and wall-normal in a channel.
 //!
@@ -63,6 +65,7 @@ pub mod filtration;
 pub mod flow;
 pub mod furnishing;
 pub mod geometry;
+pub mod measurements;
 mod noise;
 pub mod openings;
 pub mod run;
