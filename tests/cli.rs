@@ -578,6 +578,11 @@ fn scene_file_errors_name_the_file_line_and_key() {
     let drag = dir.join("drag.toml");
     std::fs::write(&drag, "[run]\ndrag = \"newton\"\n").unwrap();
     user_error(&["channel", drag.to_str().unwrap()], "`run.drag` = \"newton\"");
+    let near_wall = dir.join("near_wall.toml");
+    std::fs::write(&near_wall, "[run]\nnear_wall = \"quadrant\"\n").unwrap();
+    user_error(&["channel", near_wall.to_str().unwrap()], "`run.near_wall` = \"quadrant\"");
+    std::fs::write(&near_wall, "[run]\nnear_wall = \"intermittent\"\n").unwrap();
+    user_error(&["room", near_wall.to_str().unwrap(), "--no-plot"], "near_wall");
     user_error(&["channel", "--tau-plus", "-1"], "--tau-plus");
 }
 

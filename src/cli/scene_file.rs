@@ -10,7 +10,7 @@ use depo::tracker::filtration::FilterEfficiency;
 use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::openings;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
-use depo::tracker::{Air, Drag, Flow, Furnishing, Geometry, Opening, OpeningKind, Scene, WallBehaviour};
+use depo::tracker::{Air, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, WallBehaviour};
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
 use toml::Spanned;
@@ -73,6 +73,8 @@ struct RunFile {
     transient: Option<f64>,
     /// "stokes" or "schiller-naumann".
     drag: Option<String>,
+    /// "gaussian" or "intermittent" (channels).
+    near_wall: Option<String>,
     excursions: Option<bool>,
 }
 
@@ -273,6 +275,17 @@ fn drag(path: &Path, name: Option<&str>) -> Result<Option<Drag>, Error> {
         Some("schiller-naumann") => Ok(Some(Drag::SchillerNaumann)),
         Some(other) => {
             Err(format!("{}: `run.drag` = \"{other}\": expected \"stokes\" or \"schiller-naumann\"", path.display()))
+        }
+    }
+}
+
+fn near_wall(path: &Path, name: Option<&str>) -> Result<Option<NearWall>, Error> {
+    match name {
+        None => Ok(None),
+        Some("gaussian") => Ok(Some(NearWall::Gaussian)),
+        Some("intermittent") => Ok(Some(NearWall::Intermittent)),
+        Some(other) => {
+            Err(format!("{}: `run.near_wall` = \"{other}\": expected \"gaussian\" or \"intermittent\"", path.display()))
         }
     }
 }
@@ -538,6 +551,7 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
     set(&mut scene.drag, drag(path, file.run.drag.as_deref())?);
+    set(&mut scene.near_wall, near_wall(path, file.run.near_wall.as_deref())?);
     set(&mut study.excursions, file.run.excursions);
     scene.gravity = gravity(file.run.gravity.unwrap_or(STANDARD_GRAVITY));
     if file.run.dt_plus.is_some() || file.run.duration_plus.is_some() {
@@ -664,6 +678,7 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
     set(&mut scene.drag, drag(path, file.run.drag.as_deref())?);
+    set(&mut scene.near_wall, near_wall(path, file.run.near_wall.as_deref())?);
     if file.run.excursions == Some(false) {
         study.excursions_below = 0.0;
     }

@@ -68,6 +68,8 @@
 
 use std::sync::Arc;
 
+use crate::intermittency::Intermittent;
+
 /// von Karman's constant of Reichardt's profile.
 const KARMAN: f64 = 0.41;
 /// Wall units in which the room's wall-normal profile reaches its peak.
@@ -472,6 +474,10 @@ pub(crate) struct FlowField {
     /// the two other axes (see the module doc). Not in a channel, whose components already
     /// follow their own profiles (there every node's factor is 1).
     pub tangential: bool,
+    /// A channel's intermittent wall-normal model ([`crate::intermittency`]), which then
+    /// steps the wall-normal component's `zeta` in place of its Gaussian table (whose
+    /// `sigma` still scales it).
+    pub intermittent: Option<Intermittent>,
 }
 
 impl FlowField {
@@ -494,7 +500,8 @@ impl FlowField {
     /// `dt` (s). `drift_correction = false` drops the well-mixed drift (for comparison only).
     pub fn new(flow: &Flow, size: [f64; 3], nu: f64, dt: f64, drift_correction: bool) -> Self {
         let half = size.map(|l| 0.5 * l);
-        let mut field = FlowField { uniform: [0.0; 3], profile: None, turbulence: None, tangential: false };
+        let mut field =
+            FlowField { uniform: [0.0; 3], profile: None, turbulence: None, tangential: false, intermittent: None };
         match *flow {
             Flow::Still => {}
             Flow::Uniform { velocity } => field.uniform = velocity,

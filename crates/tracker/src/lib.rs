@@ -11,6 +11,8 @@
 //! - [`geometry`]: a room (six walls) or a plane channel (two walls, periodic along and across).
 //! - [`flow`]: mean flow (still, uniform, Poiseuille, Reichardt's turbulent profile) and the
 //!   near-wall stochastic dispersion model, tabulated once per run.
+//! - [`intermittency`]: the alternative near-wall model of a channel's wall-normal velocity,
+//!   heavy-tailed with the flatness of channel DNS.
 //! - [`furnishing`]: solid boxes inside a room (tables, shelves), each face a surface with
 //!   its own wall behaviour and tally.
 //! - [`openings`]: supply and exhaust openings on a room's walls, and the potential flow
@@ -65,6 +67,7 @@ pub mod filtration;
 pub mod flow;
 pub mod furnishing;
 pub mod geometry;
+pub mod intermittency;
 pub mod measurements;
 mod noise;
 pub mod openings;
@@ -81,5 +84,5 @@ pub use furnishing::Furnishing;
 pub use geometry::{Geometry, Orientation, Wall};
 pub use openings::{Opening, OpeningKind};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Estimate, Run};
-pub use scene::{Drag, Injection, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
+pub use scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 pub use track::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};

@@ -37,6 +37,19 @@ pub enum Drag {
     SchillerNaumann,
 }
 
+/// The statistics of the wall-normal fluid velocity near a channel's walls.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum NearWall {
+    /// Gaussian at every distance: the normalised Langevin model on the Kallio & Reeks
+    /// profiles (see [`crate::flow`]). The default.
+    #[default]
+    Gaussian,
+    /// Heavy-tailed, with the flatness direct numerical simulation finds near a wall (27 at
+    /// the wall), and the same variance and Lagrangian time (see [`crate::intermittency`]).
+    /// Channels only.
+    Intermittent,
+}
+
 /// How a step is integrated.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Scheme {
@@ -115,6 +128,8 @@ pub struct Scene {
     /// Saffman's shear lift from the mean flow's shear (channel flows with a mean profile only;
     /// off by default).
     pub lift: bool,
+    /// The near-wall statistics of a channel's wall-normal velocity.
+    pub near_wall: NearWall,
     /// One behaviour per wall, in the order of [`Geometry::walls`].
     pub walls: Vec<WallBehaviour>,
     /// The integrator.
@@ -165,6 +180,7 @@ impl Scene {
             brownian: false,
             drag: Drag::Stokes,
             lift: false,
+            near_wall: NearWall::Gaussian,
             walls,
             scheme: Scheme::Exponential,
             dt,
@@ -328,6 +344,9 @@ impl Scene {
                 1.0,
                 "needs a channel flow with a mean shear (Poiseuille or turbulent)",
             ));
+        }
+        if self.near_wall == NearWall::Intermittent && !matches!(self.flow, Flow::TurbulentChannel { .. }) {
+            return Err(SceneError::new("near_wall", 1.0, "\"intermittent\" needs a turbulent channel flow"));
         }
         if injection.count == 0 {
             return Err(SceneError::new("particles.count", 0.0, "must be at least 1"));

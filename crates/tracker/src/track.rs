@@ -62,12 +62,13 @@ use rand_distr::{Distribution, LogNormal};
 
 use crate::air::{schiller_naumann, Aerodynamics};
 use crate::excursions::Excursions;
-use crate::flow::FlowField;
+use crate::flow::{Flow, FlowField};
 use crate::furnishing::Furnishing;
 use crate::geometry::Wall;
+use crate::intermittency::Intermittent;
 use crate::noise::{particle_rng, Normals};
 use crate::openings::{Opening, OpeningKind, PotentialFlow, CELLS_ALONG_LONGEST};
-use crate::scene::{Drag, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
+use crate::scene::{Drag, Injection, NearWall, Scene, Scheme, SizeDistribution, WallBehaviour};
 
 mod contacts;
 mod excursions;
@@ -77,7 +78,9 @@ mod lanes;
 pub use excursions::ParticleTally;
 
 use contacts::{contacts, inside, wrap, AfterContacts, Flight};
-use fluid::{fluid_velocity, fluid_velocity_and_fluctuation, furnished_fluid_velocity, saffman_lift};
+use fluid::{
+    fluid_velocity, fluid_velocity_and_fluctuation, furnished_fluid_velocity, intermittent_fluid_velocity, saffman_lift,
+};
 use lanes::run_lanes;
 
 /// Contacts allowed in one step before a bouncing particle counts as resting on the wall.
@@ -186,7 +189,16 @@ impl<'a> Prepared<'a> {
         Self {
             scene,
             injection,
-            field: FlowField::new(&scene.flow, size, nu, scene.dt, scene.drift_correction),
+            field: {
+                let mut field = FlowField::new(&scene.flow, size, nu, scene.dt, scene.drift_correction);
+                if let (NearWall::Intermittent, Flow::TurbulentChannel { friction_velocity }) =
+                    (scene.near_wall, scene.flow)
+                {
+                    field.intermittent =
+                        Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, scene.drift_correction));
+                }
+                field
+            },
             walls: scene.geometry.walls(),
             surfaces: scene.surfaces(),
             behaviours: scene.surface_behaviours(),
@@ -372,7 +384,9 @@ pub(crate) fn track(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [
     // and turbulence know the boxes, and its fluid velocity the openings' mean flow; the
     // lanes' free-flight bounds and table look-ups do not.
     let free = !(brown || turb) && p.field.profile.is_none();
-    if (turb || free) && !(finite_re || euler || lift) && p.boxes.is_empty() && p.mean_flow.is_none() {
+    // So does the intermittent near-wall model, whose wall-normal step the lanes do not have.
+    let plain = p.boxes.is_empty() && p.mean_flow.is_none() && p.field.intermittent.is_none();
+    if (turb || free) && !(finite_re || euler || lift) && plain {
         return match (turb, brown) {
             (true, true) => run_lanes::<true, true>(p, ids, tally),
             (true, false) => run_lanes::<false, true>(p, ids, tally),
@@ -602,7 +616,12 @@ impl Flyer {
             let normals = TURB.then(|| [z[0], z[1], z[2]]);
             furnished_fluid_velocity(field, p.size, p.boxes, x, &mut self.zeta, normals)
         } else if TURB {
-            fluid_velocity_and_fluctuation(field, p.size, x, &mut self.zeta, [z[0], z[1], z[2]])
+            match &field.intermittent {
+                None => fluid_velocity_and_fluctuation(field, p.size, x, &mut self.zeta, [z[0], z[1], z[2]]),
+                Some(model) => {
+                    intermittent_fluid_velocity(field, model, p.size, x, &mut self.zeta, [z[0], z[1], z[2]], dt)
+                }
+            }
         } else {
             fluid_velocity::<false>(field, p.size, x, &self.zeta)
         };

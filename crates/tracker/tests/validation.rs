@@ -3,7 +3,7 @@
 
 use depo_tracker::air::{Aerodynamics, Air, STANDARD_GRAVITY};
 use depo_tracker::correlations::settling_diffusion_flux;
-use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, Run, Scene, SizeDistribution, WallBehaviour};
+use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, NearWall, Run, Scene, SizeDistribution, WallBehaviour};
 use depo_wall_model::{SizeDependence, WallLaw};
 
 fn mono(count: usize, diameter: f64) -> Injection {
@@ -116,6 +116,38 @@ fn tracers_stay_well_mixed_only_with_the_drift_correction() {
     scene.drift_correction = false;
     let share = near_wall(&run(&scene, &mono(10_000, 1e-9)).unwrap());
     assert!(share / expected > 1.5, "without drift the wall layer should collect tracers: {share}");
+}
+
+/// The same with the intermittent near-wall model: its drift for the heavy-tailed
+/// distribution keeps the tracers well mixed too, and without it they pile up at the wall.
+#[test]
+fn tracers_stay_well_mixed_with_the_intermittent_model() {
+    let air = Air::standard();
+    let u_star = 0.3;
+    let unit = air.kinematic_viscosity() / u_star;
+    let height = 300.0 * unit;
+    let dt = 0.2 * unit / u_star;
+    let mut scene = Scene::new(Geometry::Channel { length: 0.1, width: 0.05, height }, dt, 1000.0 * dt * 5.0)
+        .with_walls(WallBehaviour::Reflect);
+    scene.gravity = [0.0; 3];
+    scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
+    scene.near_wall = NearWall::Intermittent;
+    let near_wall = |r: &Run| {
+        r.records.iter().filter(|r| r.position[2] < 10.0 * unit || r.position[2] > height - 10.0 * unit).count() as f64
+            / r.records.len() as f64
+    };
+    let expected = 20.0 / 300.0;
+    let share = near_wall(&run(&scene, &mono(10_000, 1e-9)).unwrap());
+    assert!((share / expected - 1.0).abs() < 0.15, "with drift: {share} against {expected}");
+    scene.drift_correction = false;
+    let share = near_wall(&run(&scene, &mono(10_000, 1e-9)).unwrap());
+    assert!(share / expected > 1.5, "without drift the wall layer should collect tracers: {share}");
+    // Only a channel has the model's profiles.
+    let mut room = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.01, 1.0);
+    room.flow = Flow::indoor_room();
+    room.near_wall = NearWall::Intermittent;
+    let err = run(&room, &mono(10, 1e-6)).unwrap_err();
+    assert!(err.to_string().contains("near_wall"), "{err}");
 }
 
 fn busy_room() -> (Scene, Injection) {

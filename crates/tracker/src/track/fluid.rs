@@ -5,6 +5,7 @@ use glam::DVec3;
 
 use crate::flow::{tangential_products, Component, FlowField, Node};
 use crate::furnishing::{axis_distance, Furnishing};
+use crate::intermittency::Intermittent;
 
 use super::wall_distance;
 
@@ -117,6 +118,36 @@ pub(super) fn fluid_velocity_and_fluctuation(
             zeta[a] = next;
         }
     }
+    u
+}
+
+/// As [`fluid_velocity_and_fluctuation`] in a channel with the intermittent near-wall model:
+/// the streamwise and spanwise components as there, the wall-normal one's `zeta` stepped by
+/// `model` over `dt`.
+#[inline]
+pub(super) fn intermittent_fluid_velocity(
+    field: &FlowField,
+    model: &Intermittent,
+    size: [f64; 3],
+    x: DVec3,
+    zeta: &mut [f64; 3],
+    normals: [f64; 3],
+    dt: f64,
+) -> DVec3 {
+    let mut u = DVec3::from_array(field.uniform);
+    if let Some(profile) = &field.profile {
+        u.x += profile.at(wall_distance(x.z, size[2]).0).sigma;
+    }
+    let (distance, sign) = wall_distance(x.z, size[2]);
+    if let Some(turb) = &field.turbulence {
+        for a in 0..2 {
+            let (du, next) = langevin_step(&turb[a].table.at(distance), 1.0, sign, zeta[a], normals[a]);
+            u[a] += du;
+            zeta[a] = next;
+        }
+        u.z += turb[2].table.at(distance).sigma * zeta[2];
+    }
+    zeta[2] = model.step(distance, sign, zeta[2], normals[2], dt);
     u
 }
 
