@@ -2,7 +2,7 @@
 //! excursions against plain tracking.
 
 use depo_tracker::studies::{ChannelStudy, RoomStudy};
-use depo_tracker::{run, Estimate, Excursions, Injection, Scene, SizeDistribution};
+use depo_tracker::{run, Estimate, Excursions, Injection, NearWall, Scene, SizeDistribution};
 
 /// A `tau+` no particle can have at the channel's friction velocity is an error naming it, not
 /// a run of the largest particle under the wrong label.
@@ -150,6 +150,30 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
     let excursions = Excursions::in_wall_units(0.3, nu, 0.02, 3.0, 1e4);
     let (plain, split) = compare(&scene, &injection, excursions, 3000, &[0, 1]);
     assert!(z(plain, split) < 3.0, "tau+ 10: plain {plain:?}, excursions {split:?}");
+}
+
+/// The same with the intermittent near-wall model, whose deposits at `tau+ = 3` come from
+/// rare strong sweeps: the excursions' estimate against plain tracking, within three combined
+/// standard errors.
+#[test]
+fn excursions_agree_with_plain_tracking_under_the_intermittent_model() {
+    let channel = ChannelStudy::default();
+    let mut scene = channel.scene.clone();
+    scene.near_wall = NearWall::Intermittent;
+    scene.average_from = 0.5 * scene.duration;
+    let nu = scene.air.kinematic_viscosity();
+    let d = depo_tracker::correlations::diameter_for_tau_plus(3.0, 1000.0, &scene.air, 0.3).unwrap();
+    let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
+    let plain = run(&scene, &Injection { count: 6000, ..injection }).unwrap();
+    let mut split = scene.clone();
+    split.seed += 1;
+    let excursions =
+        Excursions::in_wall_units(0.3, nu, 0.02, 3.0, 1e5).calibrated(&split, &injection, 500, 1, 4).unwrap();
+    split.excursions = Some(excursions);
+    let split = run(&split, &injection).unwrap();
+    let (a, b) = (plain.deposition_velocity(&[0, 1]), split.deposition_velocity(&[0, 1]));
+    assert!(a.events > 100 && b.error < 0.2 * b.value, "plain {a:?}, excursions {b:?}");
+    assert!(z(a, b) < 3.0, "tau+ 3, intermittent: plain {a:?}, excursions {b:?}");
 }
 
 /// With excursions too, the same seed gives the same estimate, bit for bit, on one thread and
