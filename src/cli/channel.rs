@@ -1,12 +1,13 @@
 //! `depo channel`: dimensionless deposition velocity `V+` against `tau+` in a turbulent
-//! channel, beside Wood (1981) and Papavergos & Hedley (1984).
+//! channel, beside Wood (1981), Papavergos & Hedley (1984) and Sippola & Nazaroff's (2004)
+//! measurements.
 
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
 use depo::tracker::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
 use depo::tracker::measurements::SIPPOLA_NAZAROFF_2004;
-use depo::tracker::Geometry;
+use depo::tracker::{Air, Geometry};
 use serde::Serialize;
 
 use super::plot::{self, Series};
@@ -181,9 +182,11 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
     if let Some(path) = &args.plot {
         // The correlations on 100 tau+ values across the study's and the measurements', each
         // at the diameter and Schmidt number the study would give that tau+ (its particles,
-        // air and u*).
+        // air and u*; in the Brownian range a measured point's own Schmidt number differs).
+        // The measurements' tau+ in standard air, whatever the study's.
         let air = &study.scene.air;
-        let measured: Vec<(f64, f64)> = SIPPOLA_NAZAROFF_2004.iter().map(|t| (t.tau_plus(air), t.v_plus)).collect();
+        let measured: Vec<(f64, f64)> =
+            SIPPOLA_NAZAROFF_2004.iter().map(|t| (t.tau_plus(&Air::standard()), t.v_plus)).collect();
         let (lo, hi) = study
             .tau_plus
             .iter()

@@ -34,10 +34,12 @@
 //! q = 1 + zeta^2 / (nu - 2),  D(nu) = d/dnu ln(K (nu - 2) / (nu - 1))
 //! ```
 //!
-//! For `nu -> infinity` (`S = 1`, `nu' = 0`) this is the Gaussian model's step, `A = sigma'`
-//! (tested). The step is Euler-Maruyama with the coefficients frozen over `dt` (the channel's
-//! `dt+` of 0.2 is a fiftieth of `T_L+ = 10`); a particle starts from the Gaussian, which
-//! relaxes to the t within a few `T_L`, inside the transient the studies leave out.
+//! Where `S = 1` and `nu' = 0` (the Gaussian limit, `nu -> infinity` at constant `nu`) the
+//! drift is the Gaussian model's `A = sigma'` (tested at constant `nu`). Each step is the
+//! Gaussian model's exact Ornstein-Uhlenbeck step with `S` and `A` frozen at its start,
+//! `zeta decay + A T_L (1 - decay) + sqrt(S (1 - decay^2)) normal`, `decay = exp(-dt / T_L)`;
+//! a particle starts from the Gaussian, which relaxes to the t within a few `T_L`, inside
+//! the transient the studies leave out.
 //!
 //! Only the wall-normal component is intermittent: it alone carries particles to the wall.
 //! The Student-t is this model's choice of family: the heavy-tailed distribution fixed by the
@@ -156,12 +158,17 @@ struct Node {
     dnu: f64,
     /// `D(nu)`.
     d_ln_k: f64,
-    /// `1 / T_L`, 1/s.
-    inv_time: f64,
+    /// `exp(-dt / T_L)`.
+    decay: f64,
+    /// `sqrt(1 - decay^2)`.
+    noise: f64,
+    /// `T_L (1 - decay)`, s: what the drift adds over a step per unit drift.
+    drift_time: f64,
 }
 
-/// Spacing of the table in wall units (coarser in wide channels, see
-/// [`Intermittent::channel`]).
+/// Spacing of the table in wall units: up to a half-height of 328 wall units; beyond, the
+/// table has [`MAX_NODES`] nodes and its spacing grows (0.6 wall units at 10^4), coarser near
+/// the wall than the Gaussian model's table.
 const SPACING_PLUS: f64 = 0.02;
 /// At most this many nodes.
 const MAX_NODES: usize = 16_384;
@@ -180,10 +187,10 @@ pub(crate) struct Intermittent {
 
 impl Intermittent {
     /// For a channel of half-height `half` (m), friction velocity `u*` (m/s) and kinematic
-    /// viscosity `nu` (m^2/s); `drift = false` drops the well-mixed drift (for comparison
-    /// only).
+    /// viscosity `nu` (m^2/s), and a step `dt` (s); `drift = false` drops the well-mixed
+    /// drift (for comparison only).
     #[must_use]
-    pub fn channel(half: f64, friction_velocity: f64, viscosity: f64, drift: bool) -> Self {
+    pub fn channel(half: f64, friction_velocity: f64, viscosity: f64, dt: f64, drift: bool) -> Self {
         let plus = friction_velocity / viscosity; // wall units per metre
         let time = viscosity / (friction_velocity * friction_velocity); // s per wall time unit
         let half_plus = half * plus;
@@ -206,7 +213,9 @@ impl Intermittent {
                     inv_nu_m1: 1.0 / (n - 1.0),
                     dnu: on * (nu(y + h) - nu(y - h)) * per_metre,
                     d_ln_k: (ln_k(n + eps) - ln_k(n - eps)) / (2.0 * eps),
-                    inv_time: 1.0 / (time * lagrangian_time(y)),
+                    decay: (-dt / (time * lagrangian_time(y))).exp(),
+                    noise: (-(-2.0 * dt / (time * lagrangian_time(y))).exp_m1()).sqrt(),
+                    drift_time: -(time * lagrangian_time(y)) * (-dt / (time * lagrangian_time(y))).exp_m1(),
                 }
             })
             .collect();
@@ -218,25 +227,28 @@ impl Intermittent {
         &self.nodes[i.min(self.nodes.len() - 1)]
     }
 
-    /// The normalised wall-normal fluctuation `zeta` one step `dt` (s) later, at `distance`
-    /// (m) from the nearer wall, `sign` the sign of `d(distance)/dz`, driven by the standard
-    /// normal `normal`.
+    /// The normalised wall-normal fluctuation `zeta` one step later, at `distance` (m) from
+    /// the nearer wall, `sign` the sign of `d(distance)/dz`, driven by the standard normal
+    /// `normal`: the Gaussian model's exact step for frozen coefficients, `zeta decay + A T_L
+    /// (1 - decay) + sqrt(S (1 - decay^2)) normal`, with the spread `S` and the drift `A` at
+    /// the step's start.
     #[inline]
     #[must_use]
-    pub fn step(&self, distance: f64, sign: f64, zeta: f64, normal: f64, dt: f64) -> f64 {
+    pub fn step(&self, distance: f64, sign: f64, zeta: f64, normal: f64) -> f64 {
         let n = self.node(distance);
         let z2 = zeta * zeta;
         let q = 1.0 + z2 / n.nu_m2;
         let spread = (n.nu_m2 + z2) * n.inv_nu_m1;
         let shape = n.d_ln_k - 0.5 * q.ln() + 0.5 * z2 / (n.inv_nu_m1 * n.nu_m2 * n.nu_m2 * q);
         let drift = spread * (n.slope + n.sigma * n.dnu * shape);
-        zeta + (sign * drift - zeta * n.inv_time) * dt + (2.0 * spread * n.inv_time * dt).sqrt() * normal
+        zeta * n.decay + sign * drift * n.drift_time + spread.sqrt() * n.noise * normal
     }
 
     /// The well-mixed drift `A` away from the wall at `distance` for `zeta` (for tests).
     #[cfg(test)]
     fn well_mixed_drift(&self, distance: f64, zeta: f64) -> f64 {
-        self.step(distance, 1.0, zeta, 0.0, 1.0) - zeta + zeta * self.node(distance).inv_time
+        let n = self.node(distance);
+        (self.step(distance, 1.0, zeta, 0.0) - zeta * n.decay) / n.drift_time
     }
 }
 
@@ -262,7 +274,7 @@ mod tests {
         // A = sigma' (nu - 2 + zeta^2) / (nu - 1): sigma', the Gaussian model's drift, at
         // zeta = +-1, and less or more than it for weaker or stronger fluctuations. Worked in
         // wall units (u* = 1 m/s, nu_air = 1 m^2/s), sigma' by central differences.
-        let model = Intermittent::channel(300.0, 1.0, 1.0, true);
+        let model = Intermittent::channel(300.0, 1.0, 1.0, 0.2, true);
         let y = 250.01; // a node: 0.01 + 0.02 * 12500
         let h = 1e-4;
         let slope = (wall_normal_rms(y + h) - wall_normal_rms(y - h)) / (2.0 * h);
@@ -280,7 +292,7 @@ mod tests {
         // At y+ = 2 (between the DNS points 1.9279 and 2.6224), zeta = 2, in wall units:
         // A = sigma' S + sigma nu' S [D - ln(q)/2 + (nu - 1) zeta^2 / (2 (nu - 2)^2 q)], the
         // derivatives by central differences of the functions as written here.
-        let model = Intermittent::channel(150.0, 1.0, 1.0, true);
+        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true);
         let y = 0.01 + 0.02 * ((2.0f64 - 0.01) / 0.02).floor(); // the node below y+ = 2
         let nu_at = |y: f64| 4.0 + 6.0 / (19.467 + (17.443 - 19.467) * (y - 1.9279) / (2.6224 - 1.9279) - 3.0);
         let sigma_at = |y: f64| 0.0116 * y * y / (1.0 + 0.203 * y + 0.0014 * y.powf(2.421));
@@ -304,11 +316,46 @@ mod tests {
     }
 
     #[test]
+    fn drift_meets_thomsons_condition_by_quadrature() {
+        // Thomson's condition for tracers, dy = sigma zeta dt, with the stationary density
+        // uniform in y times P(zeta; nu(y)): A P = d(sigma G)/dy, G = int_|zeta|^inf u P du.
+        // Here G by quadrature of the t's density (independent of the code's closed form),
+        // the y-derivative by central differences, in wall units (u* = 1 m/s, nu = 1 m^2/s).
+        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true);
+        let nu_at = |y: f64| 4.0 + 6.0 / (flatness(y) - 3.0);
+        let density = |u: f64, nu: f64| {
+            let k = (libm::lgamma(0.5 * (nu + 1.0)) - libm::lgamma(0.5 * nu)).exp()
+                / (std::f64::consts::PI * (nu - 2.0)).sqrt();
+            k * (1.0 + u * u / (nu - 2.0)).powf(-0.5 * (nu + 1.0))
+        };
+        let g = |zeta: f64, nu: f64| {
+            // Trapezoids on u = |zeta| + e^s - 1, s up to ln(2001): the tail beyond is < 1e-10.
+            let (h, end) = (1e-3, 2001f64.ln());
+            let f = |s: f64| {
+                let u = zeta.abs() + s.exp_m1();
+                u * density(u, nu) * s.exp()
+            };
+            let n = (end / h) as usize;
+            (1..n).map(|i| f(i as f64 * h)).sum::<f64>() * h + 0.5 * h * (f(0.0) + f(n as f64 * h))
+        };
+        for k in [24, 99, 399, 1499] {
+            let y = 0.01 + 0.02 * f64::from(k); // nodes at y+ 0.49, 1.99, 7.99, 29.99
+            let h = 0.005;
+            for zeta in [-4.0, -1.0, 0.0, 1.5, 6.0] {
+                let flux = |y: f64| wall_normal_rms(y) * g(zeta, nu_at(y));
+                let thomson = (flux(y + h) - flux(y - h)) / (2.0 * h) / density(zeta, nu_at(y));
+                let drift = model.well_mixed_drift(y, zeta);
+                assert!((drift / thomson - 1.0).abs() < 1e-3, "y+ {y}, zeta {zeta}: {drift} against {thomson}");
+            }
+        }
+    }
+
+    #[test]
     fn steps_keep_the_variance_and_grow_the_tails() {
         // The process at a fixed distance with the well-mixed drift removed (sign 0): its
         // stationary distribution is the unit-variance t with the flatness there (F = 27 at
         // y+ ~ 0.05 is beyond what a sample can show; at y+ = 15, F = 6.1).
-        let model = Intermittent::channel(150.0, 1.0, 1.0, true);
+        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true);
         let y = 15.0;
         let (mut w, mut m2, mut m4) = (0.0, 0.0, 0.0);
         let mut state = 0x9E37_79B9_7F4A_7C15_u64;
@@ -321,7 +368,7 @@ mod tests {
         let n = 2_000_000;
         for i in 0..n + 1000 {
             let normal = (-2.0 * uniform().ln()).sqrt() * (std::f64::consts::TAU * uniform()).cos();
-            w = model.step(y, 0.0, w, normal, 1.0);
+            w = model.step(y, 0.0, w, normal);
             if i >= 1000 {
                 m2 += w * w;
                 m4 += w * w * w * w;

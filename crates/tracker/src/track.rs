@@ -194,8 +194,13 @@ impl<'a> Prepared<'a> {
                 if let (NearWall::Intermittent, Flow::TurbulentChannel { friction_velocity }) =
                     (scene.near_wall, scene.flow)
                 {
-                    field.intermittent =
-                        Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, scene.drift_correction));
+                    field.intermittent = Some(Intermittent::channel(
+                        0.5 * size[2],
+                        friction_velocity,
+                        nu,
+                        scene.dt,
+                        scene.drift_correction,
+                    ));
                 }
                 field
             },
@@ -618,9 +623,7 @@ impl Flyer {
         } else if TURB {
             match &field.intermittent {
                 None => fluid_velocity_and_fluctuation(field, p.size, x, &mut self.zeta, [z[0], z[1], z[2]]),
-                Some(model) => {
-                    intermittent_fluid_velocity(field, model, p.size, x, &mut self.zeta, [z[0], z[1], z[2]], dt)
-                }
+                Some(model) => intermittent_fluid_velocity(field, model, p.size, x, &mut self.zeta, [z[0], z[1], z[2]]),
             }
         } else {
             fluid_velocity::<false>(field, p.size, x, &self.zeta)

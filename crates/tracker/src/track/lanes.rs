@@ -11,7 +11,7 @@ use crate::flow::FlowField;
 use crate::flow::Table;
 
 use super::contacts::{contacts, inside, wrap, AfterContacts, Flight};
-use super::fluid::{fluid_velocity, langevin_step};
+use super::fluid::{fluid_velocity, langevin_step, stress_part};
 use super::{
     brownian_increment, inject, normals_per_step, relaxed, run_particle, wall_distance, Body, Fate, Injected, Prepared,
     Record, State, StepNormals, WallTally,
@@ -300,10 +300,15 @@ fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
             [turb[0].table.at4::<false>(d[0]), turb[1].table.at4::<false>(d[1]), turb[2].table.at4::<false>(d[2])];
         for l in 0..WIDTH {
             let g = tangential_products([nodes[0].tangential[l], nodes[1].tangential[l], nodes[2].tangential[l]]);
+            let zeta_normal = zeta[2][l];
             for a in 0..3 {
                 let (du, next) = langevin_step(&nodes[a].lane(l), g[a], sign[a][l], zeta[a][l], z[l][a]);
                 uf[a][l] += du;
                 zeta[a][l] = next;
+            }
+            if let Some(coupling) = &field.stress_coupling {
+                let xl = DVec3::new(x[0][l], x[1][l], x[2][l]);
+                uf[0][l] += stress_part(coupling, size, xl, zeta_normal);
             }
         }
     }
@@ -398,6 +403,11 @@ fn step_lanes_avx2<const BROWN: bool>(
             let t = parts.map(|p| p.3);
             [_mm256_mul_pd(t[1], t[2]), _mm256_mul_pd(t[0], t[2]), _mm256_mul_pd(t[0], t[1])]
         });
+        // `stress_part`, from the wall-normal zeta before its step.
+        let stress = field.stress_coupling.as_ref().map(|coupling| {
+            let (d, sign) = distance(2);
+            _mm256_mul_pd(_mm256_mul_pd(sign, load(&coupling.at4::<true>(lanes(d)).sigma)), load(&zeta[2]))
+        });
         for (a, &(moved, relaxed, drift, _)) in parts.iter().enumerate() {
             let (du, drift) = match g {
                 Some(g) => (_mm256_mul_pd(g[a], moved), _mm256_mul_pd(g[a], drift)),
@@ -405,6 +415,9 @@ fn step_lanes_avx2<const BROWN: bool>(
             };
             zeta[a] = lanes(_mm256_add_pd(relaxed, drift));
             uf[a] = _mm256_add_pd(uf[a], du);
+        }
+        if let Some(stress) = stress {
+            uf[0] = _mm256_add_pd(uf[0], stress);
         }
     }
     // `brownian_increment` and `relaxed` along each axis.
