@@ -204,16 +204,22 @@ pub const STRESS_CORRELATION: [(f64, f64); 64] = [
 /// [`STRESS_CORRELATION`] at `y / h`, linear between its points and held at the ends.
 #[must_use]
 pub fn stress_correlation(y_over_h: f64) -> f64 {
-    let (first, last) = (STRESS_CORRELATION[0], STRESS_CORRELATION[STRESS_CORRELATION.len() - 1]);
-    if y_over_h <= first.0 {
+    profile_at(&STRESS_CORRELATION, y_over_h)
+}
+
+/// A tabulated profile `(y, value)` (increasing `y`) at `y`: linear between its points, held at
+/// the ends.
+pub(crate) fn profile_at(points: &[(f64, f64)], y: f64) -> f64 {
+    let (first, last) = (points[0], points[points.len() - 1]);
+    if y <= first.0 {
         return first.1;
     }
-    if y_over_h >= last.0 {
+    if y >= last.0 {
         return last.1;
     }
-    let i = STRESS_CORRELATION.partition_point(|&(y, _)| y <= y_over_h);
-    let ((y0, r0), (y1, r1)) = (STRESS_CORRELATION[i - 1], STRESS_CORRELATION[i]);
-    r0 + (r1 - r0) * (y_over_h - y0) / (y1 - y0)
+    let i = points.partition_point(|&(p, _)| p <= y);
+    let ((y0, v0), (y1, v1)) = (points[i - 1], points[i]);
+    v0 + (v1 - v0) * (y - y0) / (y1 - y0)
 }
 
 /// Lagrangian integral time `T_L+(y+)` (Kallio & Reeks 1989), held at its `y+ = 200` value

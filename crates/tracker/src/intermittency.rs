@@ -45,7 +45,7 @@
 //! The Student-t is this model's choice of family: the heavy-tailed distribution fixed by the
 //! variance and flatness alone, with no further constant.
 
-use crate::flow::{lagrangian_time, wall_normal_rms};
+use crate::flow::{lagrangian_time, profile_at, wall_normal_rms};
 
 /// Flatness of the wall-normal velocity, `F(v)`, against `y+`: Moser, Kim & Mansour (1999),
 /// channel at `Re_tau = 178.12`, the half-channel profile `chan180.flat` (wall to centre).
@@ -119,16 +119,7 @@ pub const FLATNESS: [(f64, f64); 64] = [
 /// `F(v)` at `y+`, linear between the [`FLATNESS`] points and held at the ends.
 #[must_use]
 pub fn flatness(y_plus: f64) -> f64 {
-    let (first, last) = (FLATNESS[0], FLATNESS[FLATNESS.len() - 1]);
-    if y_plus <= first.0 {
-        return first.1;
-    }
-    if y_plus >= last.0 {
-        return last.1;
-    }
-    let i = FLATNESS.partition_point(|&(y, _)| y <= y_plus);
-    let ((y0, f0), (y1, f1)) = (FLATNESS[i - 1], FLATNESS[i]);
-    f0 + (f1 - f0) * (y_plus - y0) / (y1 - y0)
+    profile_at(&FLATNESS, y_plus)
 }
 
 /// Degrees of freedom of the Student-t with flatness `f > 3`: `nu = 4 + 6 / (f - 3)`.

@@ -3,7 +3,7 @@
 
 use depo_tracker::air::{Aerodynamics, Air, STANDARD_GRAVITY};
 use depo_tracker::correlations::settling_diffusion_flux;
-use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, NearWall, Run, Scene, SizeDistribution, WallBehaviour};
+use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, NearWall, Scene, SizeDistribution, WallBehaviour};
 use depo_wall_model::{SizeDependence, WallLaw};
 
 fn mono(count: usize, diameter: f64) -> Injection {
@@ -89,39 +89,10 @@ fn diffusion_onto_a_floor_follows_the_exact_solution() {
     assert!((deposited / expected - 1.0).abs() < 0.05, "{deposited} deposits against {expected}");
 }
 
-/// The dispersion model's drift keeps tracers well mixed in a turbulent channel: the share of
-/// tracers within 10 wall units of a wall stays what it was. Without the drift they pile up in
-/// the quiet layer at the wall, which the same check catches.
-#[test]
-fn tracers_stay_well_mixed_only_with_the_drift_correction() {
-    let air = Air::standard();
-    let nu = air.kinematic_viscosity();
-    let u_star = 0.3;
-    let unit = nu / u_star;
-    let height = 300.0 * unit;
-    let dt = 0.2 * unit / u_star;
-    let mut scene = Scene::new(Geometry::Channel { length: 0.1, width: 0.05, height }, dt, 1000.0 * dt * 5.0)
-        .with_walls(WallBehaviour::Reflect);
-    scene.gravity = [0.0; 3];
-    scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
-    let near_wall = |r: &Run| {
-        r.records.iter().filter(|r| r.position[2] < 10.0 * unit || r.position[2] > height - 10.0 * unit).count() as f64
-            / r.records.len() as f64
-    };
-    let expected = 20.0 / 300.0;
-    let mixed = run(&scene, &mono(10_000, 1e-9)).unwrap();
-    assert_eq!(mixed.balance().airborne, 10_000);
-    let share = near_wall(&mixed);
-    assert!((share / expected - 1.0).abs() < 0.15, "with drift: {share} against {expected}");
-    scene.drift_correction = false;
-    let share = near_wall(&run(&scene, &mono(10_000, 1e-9)).unwrap());
-    assert!(share / expected > 1.5, "without drift the wall layer should collect tracers: {share}");
-}
-
-/// The same with the intermittent near-wall model: its drift for the heavy-tailed
-/// distribution keeps the tracers well mixed too, and without it they pile up at the wall.
-#[test]
-fn tracers_stay_well_mixed_with_the_intermittent_model() {
+/// The share of 10 000 tracers within 10 wall units of either wall of a turbulent channel
+/// (reflecting walls, 300 wall units high) after 5000 steps of 0.2 wall time units, over its
+/// uniform value, with the near-wall model `near_wall` and the well-mixed drift on or off.
+fn channel_tracer_share(near_wall: NearWall, drift_correction: bool) -> f64 {
     let air = Air::standard();
     let u_star = 0.3;
     let unit = air.kinematic_viscosity() / u_star;
@@ -131,17 +102,33 @@ fn tracers_stay_well_mixed_with_the_intermittent_model() {
         .with_walls(WallBehaviour::Reflect);
     scene.gravity = [0.0; 3];
     scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
-    scene.near_wall = NearWall::Intermittent;
-    let near_wall = |r: &Run| {
-        r.records.iter().filter(|r| r.position[2] < 10.0 * unit || r.position[2] > height - 10.0 * unit).count() as f64
-            / r.records.len() as f64
-    };
-    let expected = 20.0 / 300.0;
-    let share = near_wall(&run(&scene, &mono(10_000, 1e-9)).unwrap());
-    assert!((share / expected - 1.0).abs() < 0.15, "with drift: {share} against {expected}");
-    scene.drift_correction = false;
-    let share = near_wall(&run(&scene, &mono(10_000, 1e-9)).unwrap());
-    assert!(share / expected > 1.5, "without drift the wall layer should collect tracers: {share}");
+    scene.near_wall = near_wall;
+    scene.drift_correction = drift_correction;
+    let tracers = run(&scene, &mono(10_000, 1e-9)).unwrap();
+    assert_eq!(tracers.balance().airborne, 10_000);
+    let near = tracers.records.iter().filter(|r| r.position[2] < 10.0 * unit || r.position[2] > height - 10.0 * unit);
+    near.count() as f64 / tracers.records.len() as f64 / (20.0 / 300.0)
+}
+
+/// The dispersion model's drift keeps tracers well mixed in a turbulent channel: the share of
+/// tracers within 10 wall units of a wall stays what it was. Without the drift they pile up in
+/// the quiet layer at the wall, which the same check catches.
+#[test]
+fn tracers_stay_well_mixed_only_with_the_drift_correction() {
+    let share = channel_tracer_share(NearWall::Gaussian, true);
+    assert!((share - 1.0).abs() < 0.15, "with drift: {share} of uniform");
+    let share = channel_tracer_share(NearWall::Gaussian, false);
+    assert!(share > 1.5, "without drift the wall layer should collect tracers: {share} of uniform");
+}
+
+/// The same with the intermittent near-wall model: its drift for the heavy-tailed
+/// distribution keeps the tracers well mixed too, and without it they pile up at the wall.
+#[test]
+fn tracers_stay_well_mixed_with_the_intermittent_model() {
+    let share = channel_tracer_share(NearWall::Intermittent, true);
+    assert!((share - 1.0).abs() < 0.15, "with drift: {share} of uniform");
+    let share = channel_tracer_share(NearWall::Intermittent, false);
+    assert!(share > 1.5, "without drift the wall layer should collect tracers: {share} of uniform");
     // Only a channel has the model's profiles.
     let mut room = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.01, 1.0);
     room.flow = Flow::indoor_room();
