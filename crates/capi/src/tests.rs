@@ -467,8 +467,10 @@ fn small_batches_run_on_the_calling_thread_whatever_the_cap_and_1_never_leaves_i
     assert_eq!(whereabouts(10 * DEPO_PARALLEL_MIN), (here, false));
     // A cap of 2 or more: large batches go to depo's own pool.
     assert_eq!(depo_set_num_threads(2), DEPO_OK);
-    let name = run_batch(DEPO_PARALLEL_MIN, |parallel| (std::thread::current().name().map(String::from), parallel));
-    assert_eq!(name, (Some("depo-0".to_string()), true));
+    // (Either of its threads may take the job: the name says whose pool it is.)
+    let (name, parallel) =
+        run_batch(DEPO_PARALLEL_MIN, |parallel| (std::thread::current().name().map(String::from), parallel));
+    assert!(parallel && name.as_deref().is_some_and(|n| n.starts_with("depo-")), "{name:?} {parallel}");
     // No cap: rayon's global pool, parallel.
     assert_eq!(depo_set_num_threads(0), DEPO_OK);
     assert!(run_batch(DEPO_PARALLEL_MIN, |parallel| parallel));
