@@ -245,6 +245,8 @@ impl Intermittent {
 
 #[cfg(test)]
 mod tests {
+    use rand_distr::{Distribution, StandardNormal};
+
     use super::*;
 
     #[test]
@@ -349,17 +351,10 @@ mod tests {
         let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true);
         let y = 15.0;
         let (mut w, mut m2, mut m4) = (0.0, 0.0, 0.0);
-        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut uniform = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            ((state >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-        };
+        let mut rng = crate::noise::particle_rng(1, 0);
         let n = 2_000_000;
         for i in 0..n + 1000 {
-            let normal = (-2.0 * uniform().ln()).sqrt() * (std::f64::consts::TAU * uniform()).cos();
-            w = model.step(y, 0.0, w, normal);
+            w = model.step(y, 0.0, w, StandardNormal.sample(&mut rng));
             if i >= 1000 {
                 m2 += w * w;
                 m4 += w * w * w * w;

@@ -149,10 +149,10 @@ pub(super) fn intermittent_fluid_velocity(
     normals: [f64; 3],
 ) -> DVec3 {
     let mut u = DVec3::from_array(field.uniform);
-    if let Some(profile) = &field.profile {
-        u.x += profile.at(wall_distance(x.z, size[2]).0).sigma;
-    }
     let (distance, sign) = wall_distance(x.z, size[2]);
+    if let Some(profile) = &field.profile {
+        u.x += profile.at(distance).sigma;
+    }
     if let Some(turb) = &field.turbulence {
         for a in 0..2 {
             let (du, next) = langevin_step(&turb[a].table.at(distance), 1.0, sign, zeta[a], normals[a]);
@@ -180,6 +180,8 @@ pub(super) fn langevin_step(node: &Node, g: f64, sign: f64, zeta: f64, normal: f
 
 #[cfg(test)]
 mod tests {
+    use rand_distr::{Distribution, StandardNormal};
+
     use super::*;
     #[test]
     fn channel_fluctuations_carry_the_reynolds_shear_stress() {
@@ -194,16 +196,8 @@ mod tests {
         let (y0, r0, y1, r1) = (1.2991e-01, -0.4480, 1.4227e-01, -0.4459);
         let rho = r0 + (r1 - r0) * (20.0 / 150.0 - y0) / (y1 - y0);
         let u_rms = 0.4 * 20.0 / (1.0 + 0.0239 * 20f64.powf(1.496));
-        let mut state = 0x2545_F491_4F6C_DD1D_u64;
-        let mut normal = || {
-            let mut uniform = || {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                ((state >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-            };
-            (-2.0 * uniform().ln()).sqrt() * (std::f64::consts::TAU * uniform()).cos()
-        };
+        let mut rng = crate::noise::particle_rng(1, 0);
+        let mut normal = || -> f64 { StandardNormal.sample(&mut rng) };
         for (z, sign) in [(20.0, 1.0), (280.0, -1.0)] {
             let x = DVec3::new(1.0, 1.0, z);
             let mean = fluid_velocity::<false>(&field, size, x, &[0.0; 3]).x;
