@@ -162,8 +162,8 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 let ratio =
                     if r.v_plus.upper_bound.is_some() { "-".to_string() } else { format!("{:.2}", r.ratio_to_wood) };
                 out!(
-                    "{:>8.3} {:>9.3} {:>9.2e}  {:>28}  {:>9.2e} {:>9.2e} {:>7}  {method}",
-                    r.tau_plus,
+                    "{:>8} {:>9.3} {:>9.2e}  {:>28}  {:>9.2e} {:>9.2e} {:>7}  {method}",
+                    tau_plus_cell(r.tau_plus),
                     r.diameter_um,
                     r.schmidt,
                     r.v_plus.cell(),
@@ -217,4 +217,27 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
         eprintln!("figure: {}", path.display());
     }
     Ok(())
+}
+
+/// `tau+` for the table: three decimals from 0.01 up, two significant digits in exponent form
+/// below (the diffusion regime's 1e-5 would otherwise read 0.000).
+fn tau_plus_cell(tau_plus: f64) -> String {
+    if tau_plus >= 0.01 {
+        format!("{tau_plus:.3}")
+    } else {
+        format!("{tau_plus:.1e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tau_plus_cell;
+
+    #[test]
+    fn small_tau_plus_reads_in_exponent_form() {
+        assert_eq!(tau_plus_cell(1e-5), "1.0e-5");
+        assert_eq!(tau_plus_cell(3e-3), "3.0e-3");
+        assert_eq!(tau_plus_cell(0.01), "0.010");
+        assert_eq!(tau_plus_cell(100.0), "100.000");
+    }
 }
