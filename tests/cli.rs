@@ -578,6 +578,9 @@ fn scene_file_errors_name_the_file_line_and_key() {
     let drag = dir.join("drag.toml");
     std::fs::write(&drag, "[run]\ndrag = \"newton\"\n").unwrap();
     user_error(&["channel", drag.to_str().unwrap()], "`run.drag` = \"newton\"");
+    let scheme = dir.join("scheme.toml");
+    std::fs::write(&scheme, "[run]\nscheme = \"euler\"\n").unwrap();
+    user_error(&["room", scheme.to_str().unwrap(), "--no-plot"], "`run.scheme` = \"euler\"");
     let near_wall = dir.join("near_wall.toml");
     std::fs::write(&near_wall, "[run]\nnear_wall = \"quadrant\"\n").unwrap();
     user_error(&["channel", near_wall.to_str().unwrap()], "`run.near_wall` = \"quadrant\"");

@@ -168,6 +168,7 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
             scheme: match r.scheme {
                 Scheme::Exponential => "exponential",
                 Scheme::Euler => "euler",
+                Scheme::Midpoint => "midpoint",
             },
             dt_over_tau: r.dt_over_tau,
             seconds: r.seconds,

@@ -10,7 +10,9 @@ use depo::tracker::filtration::FilterEfficiency;
 use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::openings;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
-use depo::tracker::{Air, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, WallBehaviour};
+use depo::tracker::{
+    Air, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, Scheme, WallBehaviour,
+};
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
 use toml::Spanned;
@@ -75,6 +77,8 @@ struct RunFile {
     drag: Option<String>,
     /// "gaussian" or "intermittent" (channels).
     near_wall: Option<String>,
+    /// "exponential" or "midpoint".
+    scheme: Option<String>,
     excursions: Option<bool>,
 }
 
@@ -275,6 +279,19 @@ fn drag(path: &Path, name: Option<&str>) -> Result<Option<Drag>, Error> {
         Some("schiller-naumann") => Ok(Some(Drag::SchillerNaumann)),
         Some(other) => {
             Err(format!("{}: `run.drag` = \"{other}\": expected \"stokes\" or \"schiller-naumann\"", path.display()))
+        }
+    }
+}
+
+/// The step a `run.scheme` names (the studies offer the exponential scheme and its midpoint
+/// form; Euler is for the integrator benchmark).
+fn scheme(path: &Path, name: Option<&str>) -> Result<Option<Scheme>, Error> {
+    match name {
+        None => Ok(None),
+        Some("exponential") => Ok(Some(Scheme::Exponential)),
+        Some("midpoint") => Ok(Some(Scheme::Midpoint)),
+        Some(other) => {
+            Err(format!("{}: `run.scheme` = \"{other}\": expected \"exponential\" or \"midpoint\"", path.display()))
         }
     }
 }
@@ -551,6 +568,7 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
     set(&mut scene.drag, drag(path, file.run.drag.as_deref())?);
+    set(&mut scene.scheme, scheme(path, file.run.scheme.as_deref())?);
     set(&mut scene.near_wall, near_wall(path, file.run.near_wall.as_deref())?);
     set(&mut study.excursions, file.run.excursions);
     scene.gravity = gravity(file.run.gravity.unwrap_or(STANDARD_GRAVITY));
@@ -678,6 +696,7 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
     set(&mut scene.drag, drag(path, file.run.drag.as_deref())?);
+    set(&mut scene.scheme, scheme(path, file.run.scheme.as_deref())?);
     set(&mut scene.near_wall, near_wall(path, file.run.near_wall.as_deref())?);
     if file.run.excursions == Some(false) {
         study.excursions_below = 0.0;

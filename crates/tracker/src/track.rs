@@ -23,6 +23,9 @@
 //!
 //! so the mean-square displacement is `2 D t` with `D = kT tau / m`, the Stokes-Einstein value.
 //! [`Scheme::Euler`] is forward Euler (Euler-Maruyama with Brownian motion), for comparison.
+//! [`Scheme::Midpoint`] is the exponential step with `u_f` (and the step of `zeta`) read not
+//! at `x0` but where `x(dt/2)` of the formula above puts the particle for the `u_f` at `x0`:
+//! a predictor that makes the step second order in the turbulence's gradients.
 //!
 //! ## Wall contacts
 //! When a step ends with the sphere through a wall plane (centre closer than its radius), the
@@ -179,6 +182,9 @@ pub(crate) struct Prepared<'a> {
     pub steps: usize,
     /// The averaging window `[average_from, end of the run]`, s.
     pub window: [f64; 2],
+    /// Whether each step takes the turbulence half a step on ([`Scheme::Midpoint`] in a
+    /// turbulent scene).
+    pub midpoint: bool,
 }
 
 impl<'a> Prepared<'a> {
@@ -218,6 +224,7 @@ impl<'a> Prepared<'a> {
             periodic: walled.contains(&false),
             steps: scene.steps(),
             window: [scene.average_from, scene.steps() as f64 * scene.dt],
+            midpoint: scene.scheme == Scheme::Midpoint && !matches!(scene.flow, Flow::Still | Flow::Uniform { .. }),
         }
     }
 }
@@ -302,7 +309,7 @@ impl Body {
             thermal_variance: kt,
         };
         body.relax_in(aero.relaxation_time, scene.dt);
-        if scene.brownian && scene.scheme == Scheme::Exponential {
+        if scene.brownian && scene.scheme != Scheme::Euler {
             body.contact += CONTINUITY_CORRECTION * body.brownian[0];
         }
         body
@@ -391,7 +398,7 @@ pub(crate) fn track(p: &Prepared<'_>, ids: std::ops::Range<usize>, tally: &mut [
     let free = !(brown || turb) && p.field.profile.is_none();
     // So does the intermittent near-wall model, whose wall-normal step the lanes do not have.
     let plain = p.boxes.is_empty() && p.mean_flow.is_none() && p.field.intermittent.is_none();
-    if (turb || free) && !(finite_re || euler || lift) && plain {
+    if (turb || free) && !(finite_re || euler || lift || p.midpoint) && plain {
         return match (turb, brown) {
             (true, true) => run_lanes::<true, true>(p, ids, tally),
             (true, false) => run_lanes::<false, true>(p, ids, tally),
@@ -602,6 +609,32 @@ impl Flyer {
         }
     }
 
+    /// Where the particle would be half a step on from `x` with velocity `v`, flying towards
+    /// the fluid velocity seen at `x` (its fluctuation as it stands) plus its settling: the
+    /// exponential scheme's exact flight for that constant target, without Brownian motion
+    /// or lift; `x` itself where that leaves the fluid. [`Scheme::Midpoint`]'s predictor.
+    fn half_step_position(&self, p: &Prepared<'_>, x: DVec3, v: DVec3) -> DVec3 {
+        let field = &p.field;
+        let mut u0 = if p.boxes.is_empty() {
+            fluid_velocity::<true>(field, p.size, x, &self.zeta)
+        } else {
+            let mut zeta = self.zeta;
+            furnished_fluid_velocity(field, p.size, p.boxes, x, &mut zeta, None)
+        };
+        if let Some(mean) = &p.mean_flow {
+            u0 += DVec3::from_array(mean.velocity(x.to_array()));
+        }
+        let target = u0 + self.body.settling;
+        // Over h = dt / 2: x + target h + (v - target) tau (1 - exp(-h / tau)).
+        let h = 0.5 * p.scene.dt;
+        let half = x + target * h + (v - target) * (self.body.tau * (1.0 - self.body.decay.sqrt()));
+        if inside(half, self.body.contact, p) {
+            half
+        } else {
+            x
+        }
+    }
+
     /// Step `n` (from 0, in order) of the run: the fluid velocity seen, the drag relaxation,
     /// Brownian motion and the wall contacts within the step.
     #[inline(always)]
@@ -615,21 +648,25 @@ impl Flyer {
         let field = &p.field;
         let dt = scene.dt;
         let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
-        let z = self.draws.step(n, per_step);
         let (x, v) = (self.x, self.v);
+        // Where the flow is read: the start of the step, or half a step on (`Scheme::Midpoint`).
+        let at = if TURB && p.midpoint { self.half_step_position(p, x, v) } else { x };
+        let z = self.draws.step(n, per_step);
         let mut uf = if !p.boxes.is_empty() {
             let normals = TURB.then(|| [z[0], z[1], z[2]]);
-            furnished_fluid_velocity(field, p.size, p.boxes, x, &mut self.zeta, normals)
+            furnished_fluid_velocity(field, p.size, p.boxes, at, &mut self.zeta, normals)
         } else if TURB {
             match &field.intermittent {
-                None => fluid_velocity_and_fluctuation(field, p.size, x, &mut self.zeta, [z[0], z[1], z[2]]),
-                Some(model) => intermittent_fluid_velocity(field, model, p.size, x, &mut self.zeta, [z[0], z[1], z[2]]),
+                None => fluid_velocity_and_fluctuation(field, p.size, at, &mut self.zeta, [z[0], z[1], z[2]]),
+                Some(model) => {
+                    intermittent_fluid_velocity(field, model, p.size, at, &mut self.zeta, [z[0], z[1], z[2]])
+                }
             }
         } else {
             fluid_velocity::<false>(field, p.size, x, &self.zeta)
         };
         if let Some(mean) = &p.mean_flow {
-            uf += DVec3::from_array(mean.velocity(x.to_array()));
+            uf += DVec3::from_array(mean.velocity(at.to_array()));
         }
         let body = &mut self.body;
         if FINITE_RE {
