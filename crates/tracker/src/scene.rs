@@ -67,10 +67,11 @@ pub enum Scheme {
     /// is second order there. Between mirrors in a room whose core turbulence (0.5 m/s
     /// blended over 0.25 m) makes `dt |d sigma/dy|` 0.1 at `dt = 0.05 s`, tracers within
     /// 0.1 m of floor and ceiling were 1.59 times uniform with the default step and 1.07
-    /// with this one; the default room's `beta` at 0.01 and 0.1 um with this scheme at
-    /// `dt` 0.05 and 0.1 s was within 2 % of the default scheme's at 0.01 s, where the
-    /// default step at 0.05 s was 6-13 % off (docs/validation.md). Each step reads the
-    /// profiles twice; particles go one at a time (the tracker's lanes do not have it).
+    /// with this one; the default room's `beta` with this scheme at `dt` 0.05, 0.1 and 0.2 s
+    /// agrees within its errors with the default scheme's at 0.01 s, where the default
+    /// scheme at 0.05 s was 9-14 % high at 0.01-0.3 um (docs/validation.md). The room study
+    /// uses it. Each step reads the profiles twice; particles go one at a time (the tracker's
+    /// lanes do not have it).
     Midpoint,
 }
 
