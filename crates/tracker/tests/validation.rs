@@ -336,7 +336,7 @@ fn several_contacts_per_step_follow_the_folded_path() {
 /// damping along the other walls: unscaled, 0.71 of uniform along x) (at 0.01 s; at the
 /// default 0.05 s, a million tracers stay within 3-5 % of uniform there, see
 /// `MAX_STEP_GRADIENT`). A step too long for the gradients (a core of 0.5 m/s
-/// blended over 0.25 m, `dt` = 0.05 s, which left 2.2 times uniform there) is refused.
+/// blended over 0.25 m, `dt` = 0.05 s, which left 1.6 times uniform there) is refused.
 #[test]
 fn tracers_stay_well_mixed_in_a_room_and_long_steps_are_refused() {
     let mut scene =
