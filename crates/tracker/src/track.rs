@@ -192,24 +192,16 @@ impl<'a> Prepared<'a> {
         let size = scene.geometry.size();
         let nu = scene.air.kinematic_viscosity();
         let walled = scene.geometry.walled();
+        let mut field = FlowField::new(&scene.flow, size, nu, scene.dt, scene.drift_correction);
+        if let (NearWall::Intermittent, Flow::TurbulentChannel { friction_velocity }) = (scene.near_wall, scene.flow) {
+            field.intermittent =
+                Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, scene.dt, scene.drift_correction));
+        }
+        let midpoint = scene.scheme == Scheme::Midpoint && field.turbulence.is_some();
         Self {
             scene,
             injection,
-            field: {
-                let mut field = FlowField::new(&scene.flow, size, nu, scene.dt, scene.drift_correction);
-                if let (NearWall::Intermittent, Flow::TurbulentChannel { friction_velocity }) =
-                    (scene.near_wall, scene.flow)
-                {
-                    field.intermittent = Some(Intermittent::channel(
-                        0.5 * size[2],
-                        friction_velocity,
-                        nu,
-                        scene.dt,
-                        scene.drift_correction,
-                    ));
-                }
-                field
-            },
+            field,
             walls: scene.geometry.walls(),
             surfaces: scene.surfaces(),
             behaviours: scene.surface_behaviours(),
@@ -224,7 +216,7 @@ impl<'a> Prepared<'a> {
             periodic: walled.contains(&false),
             steps: scene.steps(),
             window: [scene.average_from, scene.steps() as f64 * scene.dt],
-            midpoint: scene.scheme == Scheme::Midpoint && !matches!(scene.flow, Flow::Still | Flow::Uniform { .. }),
+            midpoint,
         }
     }
 }
