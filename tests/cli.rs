@@ -587,6 +587,11 @@ fn scene_file_errors_name_the_file_line_and_key() {
     std::fs::write(&near_wall, "[run]\nnear_wall = \"intermittent\"\n").unwrap();
     user_error(&["room", near_wall.to_str().unwrap(), "--no-plot"], "near_wall");
     user_error(&["channel", "--tau-plus", "-1"], "--tau-plus");
+    let target = dir.join("target.toml");
+    std::fs::write(&target, "[particles]\nmax_factor = 0.5\n").unwrap();
+    user_error(&["channel", target.to_str().unwrap()], "`particles.max_factor` = 0.5 must be finite and at least 1");
+    std::fs::write(&target, "[particles]\ntarget_error = -0.1\n").unwrap();
+    user_error(&["channel", target.to_str().unwrap()], "`particles.target_error` = -0.1");
 }
 
 /// A surface's own constants (as `depo fit` prints them) give the same room as the preset

@@ -39,6 +39,8 @@ struct Row {
     papavergos_hedley: f64,
     ratio_to_wood: f64,
     particle_steps: u64,
+    /// Particles run at this `tau+`.
+    particles: usize,
     /// "excursions" or "plain".
     method: &'static str,
     /// With excursions: the share of their weight given up at their longest duration.
@@ -55,6 +57,10 @@ struct Report<'a> {
     /// `excursions_below_tau_plus`).
     excursion_particles_per_point: usize,
     excursions_below_tau_plus: f64,
+    /// The relative standard error each `V+` is run to, where its first particles times
+    /// `max_factor` reach it.
+    target_error: Option<f64>,
+    max_factor: f64,
     duration_plus: f64,
     points: &'a [Row],
 }
@@ -88,6 +94,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             papavergos_hedley: p.papavergos_hedley,
             ratio_to_wood: p.v_plus.value / p.wood,
             particle_steps: p.particle_steps,
+            particles: p.particles,
             method: if p.excursions.is_some() { "excursions" } else { "plain" },
             excursions_truncated: p.excursions,
             wall_tally: p.tally.into(),
@@ -102,6 +109,8 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 particles_per_point: study.count,
                 excursion_particles_per_point: study.excursion_count,
                 excursions_below_tau_plus: study.excursions_below,
+                target_error: study.target_error,
+                max_factor: study.max_factor,
                 duration_plus: study.scene.duration * u_star * u_star / nu,
                 points: &rows,
             };
@@ -137,21 +146,30 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             )?;
         }
         Format::Table => {
+            let more = match study.target_error {
+                Some(target) => format!(
+                    ", up to {} times as many where V+ needs them for a {:.0} % error",
+                    study.max_factor,
+                    100.0 * target
+                ),
+                None => String::new(),
+            };
             out!(
-                "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+ ({} below tau+ {} with excursions); V+ = v_d / u*",
+                "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+ ({} below tau+ {} with excursions){more}; V+ = v_d / u*",
                 study.count,
                 study.excursion_count,
                 study.excursions_below
             );
             out!(
-                "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7}  method",
+                "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7} {:>9}  method",
                 "tau+",
                 "d (um)",
                 "Sc",
                 "V+ (depo) [deposits]",
                 "Wood",
                 "P&H",
-                "ratio"
+                "ratio",
+                "particles"
             );
             for r in &rows {
                 let method = match r.excursions_truncated {
@@ -162,14 +180,15 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 let ratio =
                     if r.v_plus.upper_bound.is_some() { "-".to_string() } else { format!("{:.2}", r.ratio_to_wood) };
                 out!(
-                    "{:>8} {:>9.3} {:>9.2e}  {:>28}  {:>9.2e} {:>9.2e} {:>7}  {method}",
+                    "{:>8} {:>9.3} {:>9.2e}  {:>28}  {:>9.2e} {:>9.2e} {:>7} {:>9}  {method}",
                     tau_plus_cell(r.tau_plus),
                     r.diameter_um,
                     r.schmidt,
                     r.v_plus.cell(),
                     r.wood,
                     r.papavergos_hedley,
-                    ratio
+                    ratio,
+                    r.particles
                 );
             }
             out!("ratio = depo / Wood. {ERROR_NOTE}");

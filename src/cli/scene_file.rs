@@ -229,6 +229,9 @@ struct ChannelParticles {
     tau_plus: Option<Vec<f64>>,
     count: Option<usize>,
     excursion_count: Option<usize>,
+    /// 0 turns the target off.
+    target_error: Option<f64>,
+    max_factor: Option<f64>,
     density: Option<f64>,
 }
 
@@ -592,15 +595,7 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     set(&mut study.diameters, file.particles.diameters.clone());
     set(&mut study.count, file.particles.count);
     set(&mut study.max_count, file.particles.max_count);
-    if let Some(target) = file.particles.target_error {
-        if !(target.is_finite() && target >= 0.0) {
-            return Err(format!(
-                "{}: `particles.target_error` = {target} must be finite and not negative",
-                path.display()
-            ));
-        }
-        study.target_error = (target > 0.0).then_some(target);
-    }
+    set_target_error(path, &mut study.target_error, file.particles.target_error)?;
     set(&mut study.density, file.particles.density);
     if let Some(ach) = file.ventilation.air_changes_per_hour {
         if !(ach.is_finite() && ach >= 0.0) {
@@ -710,8 +705,32 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     set(&mut study.excursion_count, file.particles.excursion_count);
     check_count(path, "particles.count", study.count)?;
     check_count(path, "particles.excursion_count", study.excursion_count)?;
+    set_target_error(path, &mut study.target_error, file.particles.target_error)?;
+    if let Some(factor) = file.particles.max_factor {
+        if !(factor.is_finite() && factor >= 1.0) {
+            return Err(format!("{}: `particles.max_factor` = {factor} must be finite and at least 1", path.display()));
+        }
+        study.max_factor = factor;
+    }
+    let most = |count: usize| (count as f64 * study.max_factor).min(usize::MAX as f64) as usize;
+    check_count(path, "particles.count times particles.max_factor", most(study.count))?;
+    check_count(path, "particles.excursion_count times particles.max_factor", most(study.excursion_count))?;
     set(&mut study.density, file.particles.density);
     Ok(study)
+}
+
+/// `particles.target_error`, if the file sets it: 0 turns the target off.
+fn set_target_error(path: &Path, target_error: &mut Option<f64>, value: Option<f64>) -> Result<(), Error> {
+    if let Some(target) = value {
+        if !(target.is_finite() && target >= 0.0) {
+            return Err(format!(
+                "{}: `particles.target_error` = {target} must be finite and not negative",
+                path.display()
+            ));
+        }
+        *target_error = (target > 0.0).then_some(target);
+    }
+    Ok(())
 }
 
 /// A particle count whose particles would not fit in memory is one line, not an abort.

@@ -80,12 +80,22 @@ const PILOT: (usize, usize) = (4, 1);
 /// speak of; the printed share given up says so for each run.
 pub const CHANNEL_LONGEST_EXCURSION: f64 = 1e5;
 
+/// The innermost splitting level of a channel study's excursions, in wall units (from the
+/// particle's surface): levels halve from 15 wall units down to 0.23. Below `tau+ = 3` the
+/// branches spend about 95 % of their steps within one wall unit of the wall, hovering for
+/// hundreds to thousands of wall time units, so each split below a few tenths of a wall unit
+/// multiplies the costliest branches. Measured at 1000 particles per `tau+` (single runs,
+/// efficiency `1 / (relative error^2 time)`), three more levels down to 0.03 wall units gave
+/// 21, 15 and 24 at `tau+` 0.1, 0.3 and 1, and stopping at 0.23 gave 30, 28 and 31 with the
+/// same `V+` within the errors; stopping one level further out (0.47) gave 22, 20 and 25.
+pub const CHANNEL_INNERMOST_LEVEL: f64 = 0.2;
+
 /// The smallest deposition velocity (Lai & Nazaroff's, m/s) of a surface whose figure a room
 /// study resolves to its `target_error`: below it the surface takes a negligible share of the
 /// room's deposition.
 pub const RESOLVED_FROM: f64 = 1e-7;
 
-/// How many more particles than the first ones' errors say a room study runs to reach its
+/// How many more particles than the first ones' errors say a study runs to reach its
 /// `target_error`: a margin for the errors' own spread.
 pub const TARGET_MARGIN: f64 = 1.15;
 
@@ -236,7 +246,7 @@ impl RoomStudy {
     /// The particles a size needs for its figures to reach `target` ([`RoomStudy::target_error`]),
     /// from the errors of `first`'s: at least the particles already run, at most `max_count`.
     fn needed(&self, first: &Run, model: &LaiNazaroff, target: f64) -> usize {
-        let n = first.records.len() as f64;
+        let n = first.records.len();
         let mut figures = vec![first.loss_rate()];
         for (orientation, reference) in
             [(Orientation::Floor, model.floor), (Orientation::Ceiling, model.ceiling), (Orientation::Wall, model.wall)]
@@ -245,15 +255,8 @@ impl RoomStudy {
                 figures.push(first.deposition_velocity(&first.walls_facing(orientation)));
             }
         }
-        let mut needed = n;
-        for e in figures {
-            needed = if e.events == 0 || e.value <= 0.0 {
-                self.max_count as f64
-            } else {
-                needed.max(n * (e.error / e.value / target).powi(2) * TARGET_MARGIN)
-            };
-        }
-        (needed.ceil() as usize).clamp(first.records.len(), self.max_count.max(first.records.len()))
+        let needed = figures.iter().map(|e| particles_for(e, n, target)).max().unwrap_or(n);
+        needed.clamp(n, self.max_count.max(n))
     }
 
     /// Runs every size; `progress` is told after each.
@@ -394,6 +397,15 @@ pub struct ChannelStudy {
     /// Particles per `tau+` where excursions count the deposits (each costs far more than a
     /// plainly tracked one).
     pub excursion_count: usize,
+    /// The relative standard error to resolve each `V+` to. When the first particles (`count`
+    /// or `excursion_count`) leave it less resolved, as many more are run (and pooled with
+    /// them) as its error, falling as `1 / sqrt(n)`, says it needs, times [`TARGET_MARGIN`],
+    /// provided that is at most `max_factor` times the first particles; a `tau+` that would
+    /// need more keeps its first run, and its printed error says how far it is. `None`: the
+    /// first particles, whatever the errors.
+    pub target_error: Option<f64>,
+    /// The most particles per `tau+` with `target_error`, as a multiple of its first ones.
+    pub max_factor: f64,
 }
 
 impl Default for ChannelStudy {
@@ -422,6 +434,8 @@ impl Default for ChannelStudy {
             transient: 0.5,
             excursions_below: 10.0,
             excursion_count: 1000,
+            target_error: Some(0.05),
+            max_factor: 4.0,
         }
     }
 }
@@ -443,6 +457,9 @@ pub struct ChannelPoint {
     pub papavergos_hedley: f64,
     /// Particle-steps the run took (of the tracked particles; excursions not included).
     pub particle_steps: u64,
+    /// Particles run (more than the first ones where [`ChannelStudy::target_error`] needed
+    /// them).
+    pub particles: usize,
     /// Whether deposits were counted by near-wall excursions, and if so the share of their
     /// weight given up at their longest duration ([`Run::truncated_share`](crate::Run::truncated_share)).
     pub excursions: Option<f64>,
@@ -465,15 +482,21 @@ impl ChannelStudy {
             let mut scene = self.scene.clone();
             scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
             if tp < self.excursions_below {
-                // Down to 0.02 wall units; factors up to 4 (larger ones made the deep
-                // branches, which live long in the Brownian sublayer, too many: 3-5 times the
-                // run time for the same error).
+                // Factors up to 4 (larger ones made the deep branches, which live long in
+                // the Brownian sublayer, too many: 3-5 times the run time for the same error).
+                let pilot = (count / PILOT.0).max(1);
                 scene =
-                    with_excursions(scene, &injection, (count / PILOT.0).max(1), 0.02, CHANNEL_LONGEST_EXCURSION, 4)?;
+                    with_excursions(scene, &injection, pilot, CHANNEL_INNERMOST_LEVEL, CHANNEL_LONGEST_EXCURSION, 4)?;
             }
-            let result = run(&scene, &injection)?;
-            let all: Vec<usize> = (0..result.walls.len()).collect();
-            let v = result.deposition_velocity(&all);
+            let all_walls = |r: &Run| r.deposition_velocity(&(0..r.walls.len()).collect::<Vec<_>>());
+            let mut result = run(&scene, &injection)?;
+            if let Some(target) = self.target_error {
+                let needed = particles_for(&all_walls(&result), count, target);
+                if needed > count && needed as f64 <= self.max_factor * count as f64 {
+                    result = run_more(&scene, &Injection { count: needed, ..injection }, result)?;
+                }
+            }
+            let v = all_walls(&result);
             let sc = schmidt(d, air);
             points.push(ChannelPoint {
                 tau_plus: tp,
@@ -488,11 +511,38 @@ impl ChannelStudy {
                 wood: wood(tp, sc),
                 papavergos_hedley: papavergos_hedley(tp, sc),
                 particle_steps: result.particle_steps(),
+                particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
                 tally: total(&result.tallies),
             });
             progress(i + 1);
         }
         Ok(points)
+    }
+}
+
+/// The particles an estimate from `n` of them needs for a relative standard error of
+/// `target`, as its error falls with `1 / sqrt(n)`, times [`TARGET_MARGIN`]; `usize::MAX`
+/// with no deposit to go by.
+fn particles_for(e: &Estimate, n: usize, target: f64) -> usize {
+    if e.events == 0 || e.value <= 0.0 {
+        return usize::MAX;
+    }
+    (n as f64 * (e.error / e.value / target).powi(2) * TARGET_MARGIN).ceil() as usize
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_particles_a_target_needs_follow_one_over_the_square_root_of_their_number() {
+        // 10 % from 1000 particles: a quarter of the error takes four times the particles,
+        // 4600 with the margin; no deposit gives nothing to go by.
+        let e = Estimate { value: 2.0, error: 0.2, events: 50, upper_bound: 2.4 };
+        assert_eq!(particles_for(&e, 1000, 0.05), 4600);
+        assert_eq!(particles_for(&e, 1000, 0.2), 288);
+        let none = Estimate { value: 0.0, error: 0.0, events: 0, upper_bound: 1.0 };
+        assert_eq!(particles_for(&none, 1000, 0.05), usize::MAX);
     }
 }

@@ -1,14 +1,14 @@
 //! The room and channel studies against their correlations, on small runs, and the near-wall
 //! excursions against plain tracking.
 
-use depo_tracker::studies::{ChannelStudy, RoomStudy};
+use depo_tracker::studies::{ChannelStudy, RoomStudy, CHANNEL_INNERMOST_LEVEL};
 use depo_tracker::{run, Estimate, Excursions, Injection, NearWall, Scene, SizeDistribution};
 
 /// A `tau+` no particle can have at the channel's friction velocity is an error naming it, not
 /// a run of the largest particle under the wrong label.
 #[test]
 fn an_impossible_tau_plus_is_an_error() {
-    let mut study = ChannelStudy { tau_plus: vec![10.0], count: 10, ..ChannelStudy::default() };
+    let mut study = ChannelStudy { tau_plus: vec![10.0], count: 10, target_error: None, ..ChannelStudy::default() };
     study.scene.flow = depo_tracker::Flow::TurbulentChannel { friction_velocity: 1e-4 };
     let err = study.run(|_| {}).unwrap_err();
     assert_eq!(err.field, "particles.tau_plus");
@@ -18,7 +18,7 @@ fn an_impossible_tau_plus_is_an_error() {
 /// Turbulent channel, impaction regime: `V+` at `tau+ = 10` within a factor of 2 of Wood (1981).
 #[test]
 fn channel_deposition_at_tau_plus_10_is_within_a_factor_2_of_wood() {
-    let study = ChannelStudy { tau_plus: vec![10.0], count: 2000, ..ChannelStudy::default() };
+    let study = ChannelStudy { tau_plus: vec![10.0], count: 2000, target_error: None, ..ChannelStudy::default() };
     let points = study.run(|_| {}).unwrap();
     let p = &points[0];
     assert!(p.v_plus.events > 100, "{p:?}");
@@ -30,6 +30,30 @@ fn channel_deposition_at_tau_plus_10_is_within_a_factor_2_of_wood() {
         p.wood,
         wood_by_hand(10.0)
     );
+}
+
+/// With a target error the channel study runs more particles where `V+` needs them, and
+/// pools them with the first: resolved to the target (its 15 % margin covers the errors' own
+/// spread); a `tau+` that would need more than `max_factor` times its first particles keeps
+/// them.
+#[test]
+fn a_channel_study_runs_more_particles_where_v_plus_needs_them() {
+    let study = ChannelStudy {
+        tau_plus: vec![10.0, 100.0],
+        count: 300,
+        target_error: Some(0.05),
+        max_factor: 40.0,
+        ..ChannelStudy::default()
+    };
+    for p in study.run(|_| {}).unwrap() {
+        assert!(p.particles > 600, "{p:?}");
+        assert!(p.v_plus.error < 0.055 * p.v_plus.value, "{p:?}");
+    }
+    let capped = ChannelStudy { max_factor: 1.5, ..study };
+    for p in capped.run(|_| {}).unwrap() {
+        assert_eq!(p.particles, 300, "{p:?}");
+        assert!(p.v_plus.error > 0.08 * p.v_plus.value, "{p:?}");
+    }
 }
 
 /// Wood's (1981) correlation, `V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2` (at most 0.13), with the
@@ -84,7 +108,8 @@ fn sublayer_conductance_by_hand(r_plus: f64, schmidt: f64) -> f64 {
 /// excursions given up after 1e4 wall time units, it falls below half.
 #[test]
 fn channel_deposition_at_tau_plus_0_1_is_within_a_factor_2_of_wood() {
-    let study = ChannelStudy { tau_plus: vec![0.1], excursion_count: 400, ..ChannelStudy::default() };
+    let study =
+        ChannelStudy { tau_plus: vec![0.1], excursion_count: 400, target_error: None, ..ChannelStudy::default() };
     let points = study.run(|_| {}).unwrap();
     let p = &points[0];
     assert!(p.v_plus.events > 100 && p.v_plus.error < 0.15 * p.v_plus.value, "{p:?}");
@@ -104,7 +129,12 @@ fn channel_deposition_at_tau_plus_0_1_is_within_a_factor_2_of_wood() {
 /// `y+^4` from the wall, -3/4 in the limit of large `Sc`.
 #[test]
 fn channel_diffusion_regime_follows_the_sublayer_conductance_and_the_schmidt_number() {
-    let study = ChannelStudy { tau_plus: vec![1e-4, 1e-2], excursion_count: 1000, ..ChannelStudy::default() };
+    let study = ChannelStudy {
+        tau_plus: vec![1e-4, 1e-2],
+        excursion_count: 1000,
+        target_error: None,
+        ..ChannelStudy::default()
+    };
     let points = study.run(|_| {}).unwrap();
     let mut by_hand = Vec::new();
     for p in &points {
@@ -149,8 +179,13 @@ fn room_deposition_matches_lai_nazaroff_where_it_is_measurable() {
 /// lift about 70 deposit, without it a handful (2000 gave 9 against 2, too few to compare).
 #[test]
 fn saffman_lift_raises_channel_deposition_at_tau_plus_3() {
-    let mut study =
-        ChannelStudy { tau_plus: vec![3.0], count: 10_000, excursions_below: 0.0, ..ChannelStudy::default() };
+    let mut study = ChannelStudy {
+        tau_plus: vec![3.0],
+        count: 10_000,
+        excursions_below: 0.0,
+        target_error: None,
+        ..ChannelStudy::default()
+    };
     let without = study.run(|_| {}).unwrap()[0].v_plus;
     study.scene.lift = true;
     let with = study.run(|_| {}).unwrap()[0].v_plus;
@@ -208,7 +243,7 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
     scene.average_from = 0.5 * scene.duration;
     let d = depo_tracker::correlations::diameter_for_tau_plus(10.0, 1000.0, &scene.air, 0.3).unwrap();
     let injection = Injection::new(400, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
-    let excursions = Excursions::in_wall_units(0.3, nu, 0.02, 3.0, 1e4);
+    let excursions = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e4);
     let (plain, split) = compare(&scene, &injection, excursions, 3000, &[0, 1]);
     assert!(z(plain, split) < 3.0, "tau+ 10: plain {plain:?}, excursions {split:?}");
 }
@@ -228,8 +263,9 @@ fn excursions_agree_with_plain_tracking_under_the_intermittent_model() {
     let plain = run(&scene, &Injection { count: 6000, ..injection }).unwrap();
     let mut split = scene.clone();
     split.seed += 1;
-    let excursions =
-        Excursions::in_wall_units(0.3, nu, 0.02, 3.0, 1e5).calibrated(&split, &injection, 500, 1, 4).unwrap();
+    let excursions = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e5)
+        .calibrated(&split, &injection, 500, 1, 4)
+        .unwrap();
     split.excursions = Some(excursions);
     let split = run(&split, &injection).unwrap();
     let (a, b) = (plain.deposition_velocity(&[0, 1]), split.deposition_velocity(&[0, 1]));
