@@ -86,7 +86,7 @@ pub const CHANNEL_LONGEST_EXCURSION: f64 = 1e5;
 /// hundreds to thousands of wall time units, so each split below a few tenths of a wall unit
 /// multiplies the costliest branches. Measured at 1000 particles per `tau+` (single runs,
 /// efficiency `1 / (relative error^2 time)`), three more levels down to 0.03 wall units gave
-/// 21, 15 and 24 at `tau+` 0.1, 0.3 and 1, and stopping at 0.23 gave 30, 28 and 31 with the
+/// 21, 14 and 24 at `tau+` 0.1, 0.3 and 1, and stopping at 0.23 gave 30, 28 and 31 with the
 /// same `V+` within the errors; stopping one level further out (0.47) gave 22, 20 and 25.
 pub const CHANNEL_INNERMOST_LEVEL: f64 = 0.2;
 

@@ -122,8 +122,8 @@ fn channel_deposition_at_tau_plus_0_1_is_within_a_factor_2_of_wood() {
 /// 3.4e5, where inertia is negligible): particles cross the viscous sublayer by Brownian and
 /// turbulent diffusion, so `V+` is the layer's conductance. depo's Lagrangian `V+` is within
 /// 0.85-1.45 of the gradient-diffusion conductance of the same profiles worked out here
-/// (1.12 and 1.18, with errors of 3.9 and 5.9 %; a Brownian diffusivity half or double would
-/// move it 1.7 times, turbulence off far more), within a factor of 2 of Wood (1.63 and 1.23),
+/// (1.06 and 1.10, with errors of 4.1 and 5.8 %; a Brownian diffusivity half or double would
+/// move it 1.7 times, turbulence off far more), within a factor of 2 of Wood (1.54 and 1.14),
 /// and falls with the Schmidt number with an exponent between -0.8 and -0.6 (-0.72): Wood's
 /// and Papavergos & Hedley's correlations have -2/3, the model's eddy diffusivity, growing as
 /// `y+^4` from the wall, -3/4 in the limit of large `Sc`.
