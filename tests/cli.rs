@@ -547,6 +547,29 @@ fn channel_reports_v_plus_beside_wood() {
     assert!(circles > 16, "{circles} circles: the 16 measurements and depo's point");
 }
 
+/// A `V+` left above the target error, as the first particles times `max_factor` would not
+/// reach it, is flagged in the table, with the note saying why; with enough particles it is
+/// not.
+#[test]
+fn channel_flags_a_v_plus_left_above_its_target_error() {
+    let dir = scratch("channel-target");
+    let scene = dir.join("few.toml");
+    std::fs::write(&scene, "[particles]\ntau_plus = [10.0]\ncount = 60\ntarget_error = 0.05\nmax_factor = 1.0\n")
+        .unwrap();
+    let table = |out: Output| {
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let few = table(depo(&["channel", scene.to_str().unwrap()]));
+    let row = few.lines().find(|l| l.trim_start().starts_with("10.000")).unwrap();
+    assert!(row.contains("]*"), "{few}");
+    assert!(few.contains("* unresolved: no deposit event, or a relative standard error above the 5 % target"), "{few}");
+    std::fs::write(&scene, "[particles]\ntau_plus = [10.0]\ncount = 60\ntarget_error = 0.05\nmax_factor = 60.0\n")
+        .unwrap();
+    let enough = table(depo(&["channel", scene.to_str().unwrap()]));
+    assert!(!enough.contains("]*") && !enough.contains("* unresolved"), "{enough}");
+}
+
 #[test]
 fn scene_file_errors_name_the_file_line_and_key() {
     let dir = scratch("errors");

@@ -160,6 +160,10 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 study.excursion_count,
                 study.excursions_below
             );
+            // Beside a target error: no deposit event, or an error above the target.
+            let unresolved = |r: &Row| {
+                study.target_error.is_some_and(|t| r.v_plus.events == 0 || r.v_plus.error > t * r.v_plus.value)
+            };
             out!(
                 "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7} {:>9}  method",
                 "tau+",
@@ -179,8 +183,9 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 };
                 let ratio =
                     if r.v_plus.upper_bound.is_some() { "-".to_string() } else { format!("{:.2}", r.ratio_to_wood) };
+                let flag = if unresolved(r) { "*" } else { " " };
                 out!(
-                    "{:>8} {:>9.3} {:>9.2e}  {:>28}  {:>9.2e} {:>9.2e} {:>7} {:>9}  {method}",
+                    "{:>8} {:>9.3} {:>9.2e}  {:>28}{flag} {:>9.2e} {:>9.2e} {:>7} {:>9}  {method}",
                     tau_plus_cell(r.tau_plus),
                     r.diameter_um,
                     r.schmidt,
@@ -192,6 +197,13 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 );
             }
             out!("ratio = depo / Wood. {ERROR_NOTE}");
+            if let Some(target) = study.target_error.filter(|_| rows.iter().any(unresolved)) {
+                out!(
+                    "* unresolved: no deposit event, or a relative standard error above the {:.0} % target that {} times the first particles would not reach.",
+                    100.0 * target,
+                    study.max_factor
+                );
+            }
             out!(
                 "Averages over the last {:.0} % of the run; {steps} particle-steps tracked (excursions not counted) in {seconds:.1} s.",
                 100.0 * (1.0 - study.transient)
