@@ -548,8 +548,8 @@ fn channel_reports_v_plus_beside_wood() {
 }
 
 /// A `V+` left above the target error, as the first particles times `max_factor` would not
-/// reach it, is flagged in the table, with the note saying why; with enough particles it is
-/// not.
+/// reach it, is flagged in the table, with the note saying why, and in the JSON; with enough
+/// particles it is not.
 #[test]
 fn channel_flags_a_v_plus_left_above_its_target_error() {
     let dir = scratch("channel-target");
@@ -564,10 +564,15 @@ fn channel_flags_a_v_plus_left_above_its_target_error() {
     let row = few.lines().find(|l| l.trim_start().starts_with("10.000")).unwrap();
     assert!(row.contains("]*"), "{few}");
     assert!(few.contains("* unresolved: no deposit event, or a relative standard error above the 5 % target"), "{few}");
+    let report = ok_json(&["channel", scene.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(report["points"][0]["unresolved"], true, "{report}");
     std::fs::write(&scene, "[particles]\ntau_plus = [10.0]\ncount = 60\ntarget_error = 0.05\nmax_factor = 60.0\n")
         .unwrap();
     let enough = table(depo(&["channel", scene.to_str().unwrap()]));
     assert!(!enough.contains("]*") && !enough.contains("* unresolved"), "{enough}");
+    let report = ok_json(&["channel", scene.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(report["points"][0]["unresolved"], false, "{report}");
+    assert_eq!(report["target_error"], 0.05, "{report}");
 }
 
 #[test]

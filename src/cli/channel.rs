@@ -45,6 +45,9 @@ struct Row {
     method: &'static str,
     /// With excursions: the share of their weight given up at their longest duration.
     excursions_truncated: Option<f64>,
+    /// Beside a target error: no deposit event, or a relative standard error above the target
+    /// (which `max_factor` times the first particles would not reach).
+    unresolved: bool,
     wall_tally: Tally,
 }
 
@@ -97,6 +100,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             particles: p.particles,
             method: if p.excursions.is_some() { "excursions" } else { "plain" },
             excursions_truncated: p.excursions,
+            unresolved: study.target_error.is_some_and(|t| p.v_plus.events == 0 || p.v_plus.error > t * p.v_plus.value),
             wall_tally: p.tally.into(),
         })
         .collect();
@@ -160,10 +164,6 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 study.excursion_count,
                 study.excursions_below
             );
-            // Beside a target error: no deposit event, or an error above the target.
-            let unresolved = |r: &Row| {
-                study.target_error.is_some_and(|t| r.v_plus.events == 0 || r.v_plus.error > t * r.v_plus.value)
-            };
             out!(
                 "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7} {:>9}  method",
                 "tau+",
@@ -183,7 +183,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 };
                 let ratio =
                     if r.v_plus.upper_bound.is_some() { "-".to_string() } else { format!("{:.2}", r.ratio_to_wood) };
-                let flag = if unresolved(r) { "*" } else { " " };
+                let flag = if r.unresolved { "*" } else { " " };
                 out!(
                     "{:>8} {:>9.3} {:>9.2e}  {:>28}{flag} {:>9.2e} {:>9.2e} {:>7} {:>9}  {method}",
                     tau_plus_cell(r.tau_plus),
@@ -197,7 +197,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 );
             }
             out!("ratio = depo / Wood. {ERROR_NOTE}");
-            if let Some(target) = study.target_error.filter(|_| rows.iter().any(unresolved)) {
+            if let Some(target) = study.target_error.filter(|_| rows.iter().any(|r| r.unresolved)) {
                 out!(
                     "* unresolved: no deposit event, or a relative standard error above the {:.0} % target that {} times the first particles would not reach.",
                     100.0 * target,
