@@ -274,40 +274,30 @@ fn read_with_text<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<(T, Strin
     Ok((file, text))
 }
 
-/// The drag law a `run.drag` names.
-fn drag(path: &Path, name: Option<&str>) -> Result<Option<Drag>, Error> {
-    match name {
-        None => Ok(None),
-        Some("stokes") => Ok(Some(Drag::Stokes)),
-        Some("schiller-naumann") => Ok(Some(Drag::SchillerNaumann)),
-        Some(other) => {
-            Err(format!("{}: `run.drag` = \"{other}\": expected \"stokes\" or \"schiller-naumann\"", path.display()))
+/// The value a `run` key names among `options`, `None` where the file leaves the key out; any
+/// other name is an error listing the options.
+fn named<T: Copy>(path: &Path, key: &str, name: Option<&str>, options: &[(&str, T)]) -> Result<Option<T>, Error> {
+    let Some(name) = name else { return Ok(None) };
+    match options.iter().find(|(n, _)| *n == name) {
+        Some(&(_, value)) => Ok(Some(value)),
+        None => {
+            let names: Vec<String> = options.iter().map(|(n, _)| format!("\"{n}\"")).collect();
+            Err(format!("{}: `{key}` = \"{name}\": expected {}", path.display(), names.join(" or ")))
         }
     }
 }
 
-/// The step a `run.scheme` names (the studies offer the exponential scheme and its midpoint
-/// form; Euler is for the integrator benchmark).
-fn scheme(path: &Path, name: Option<&str>) -> Result<Option<Scheme>, Error> {
-    match name {
-        None => Ok(None),
-        Some("exponential") => Ok(Some(Scheme::Exponential)),
-        Some("midpoint") => Ok(Some(Scheme::Midpoint)),
-        Some(other) => {
-            Err(format!("{}: `run.scheme` = \"{other}\": expected \"exponential\" or \"midpoint\"", path.display()))
-        }
-    }
-}
-
-fn near_wall(path: &Path, name: Option<&str>) -> Result<Option<NearWall>, Error> {
-    match name {
-        None => Ok(None),
-        Some("gaussian") => Ok(Some(NearWall::Gaussian)),
-        Some("intermittent") => Ok(Some(NearWall::Intermittent)),
-        Some(other) => {
-            Err(format!("{}: `run.near_wall` = \"{other}\": expected \"gaussian\" or \"intermittent\"", path.display()))
-        }
-    }
+/// The run's named choices where the file makes them: the drag law, the step (the studies offer
+/// the exponential scheme and its midpoint form; Euler is for the integrator benchmark) and the
+/// near-wall model.
+fn apply_run_choices(path: &Path, scene: &mut Scene, run: &RunFile) -> Result<(), Error> {
+    let drag = [("stokes", Drag::Stokes), ("schiller-naumann", Drag::SchillerNaumann)];
+    set(&mut scene.drag, named(path, "run.drag", run.drag.as_deref(), &drag)?);
+    let schemes = [("exponential", Scheme::Exponential), ("midpoint", Scheme::Midpoint)];
+    set(&mut scene.scheme, named(path, "run.scheme", run.scheme.as_deref(), &schemes)?);
+    let models = [("gaussian", NearWall::Gaussian), ("intermittent", NearWall::Intermittent)];
+    set(&mut scene.near_wall, named(path, "run.near_wall", run.near_wall.as_deref(), &models)?);
+    Ok(())
 }
 
 fn set<T>(slot: &mut T, value: Option<T>) {
@@ -570,9 +560,7 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
-    set(&mut scene.drag, drag(path, file.run.drag.as_deref())?);
-    set(&mut scene.scheme, scheme(path, file.run.scheme.as_deref())?);
-    set(&mut scene.near_wall, near_wall(path, file.run.near_wall.as_deref())?);
+    apply_run_choices(path, scene, &file.run)?;
     set(&mut study.excursions, file.run.excursions);
     scene.gravity = gravity(file.run.gravity.unwrap_or(STANDARD_GRAVITY));
     if file.run.dt_plus.is_some() || file.run.duration_plus.is_some() {
@@ -690,9 +678,7 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
-    set(&mut scene.drag, drag(path, file.run.drag.as_deref())?);
-    set(&mut scene.scheme, scheme(path, file.run.scheme.as_deref())?);
-    set(&mut scene.near_wall, near_wall(path, file.run.near_wall.as_deref())?);
+    apply_run_choices(path, scene, &file.run)?;
     if file.run.excursions == Some(false) {
         study.excursions_below = 0.0;
     }
