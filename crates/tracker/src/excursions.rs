@@ -40,6 +40,20 @@
 //! Harris 1951; the weight windows of Monte Carlo neutron transport, Booth & Hendricks 1984):
 //! the levels and factors decide only how far the variance falls per unit of work.
 //!
+//! ## Sweeps caught early (channels)
+//! Where inertia lets a particle coast through the viscous sublayer (`tau+` of a few), what
+//! deposits it is a strong sweep: in a run at `tau+ = 3` the dozen entries into the layer with
+//! the fluid's wall-ward `zeta` above 4, out of some ten thousand, carried three quarters of
+//! the deposited weight, and no splitting within the layer can make the plain run meet more
+//! of them. With [`Excursions::sweeps`] the excursions' region also takes in, anywhere in a
+//! channel, a particle whose fluid carries it towards the nearer wall with `zeta` above
+//! [`Sweeps::enter`], until `zeta` falls below [`Sweeps::leave`]; such an entry starts
+//! [`Sweeps::sampling`] excursions, so each strong sweep's outcomes are sampled many times
+//! over. The estimator is the same conditional Monte Carlo for any such region: every
+//! deposit is preceded by an entry into it, and an excursion is followed until it leaves (the
+//! layer and the sweep both behind it) or deposits. The two thresholds keep a particle whose
+//! `zeta` wanders about one of them from starting excursions step after step.
+//!
 //! ## Estimates and their errors
 //! A deposition velocity is a ratio of deposits (an injected particle's excursions' weighted
 //! deposits) to exposure (its airborne time in the window), summed over the injected
@@ -63,6 +77,24 @@ pub struct Excursions {
     pub max_duration: f64,
     /// Splitting toward the wall within the layer.
     pub splitting: Splitting,
+    /// Strong sweeps caught before they reach the layer (channels only); `None`: the layer
+    /// alone.
+    pub sweeps: Option<Sweeps>,
+}
+
+/// Strong sweeps caught on their way to the layer, in a channel (see the module docs): a
+/// particle whose fluid's normalised wall-normal fluctuation `zeta` carries it towards the
+/// nearer wall faster than [`Sweeps::enter`] counts as inside the excursions' region, as one
+/// within the layer does, until that `zeta` falls below [`Sweeps::leave`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sweeps {
+    /// Wall-ward `zeta` from which a particle is inside.
+    pub enter: f64,
+    /// Wall-ward `zeta` below which it is outside again (if outside the layer too).
+    pub leave: f64,
+    /// Excursions started per entry by a sweep, on average (as [`Excursions::sampling`] per
+    /// crossing of the layer); each weighs `1 / sampling`.
+    pub sampling: f64,
 }
 
 impl Excursions {
@@ -80,6 +112,7 @@ impl Excursions {
             sampling,
             max_duration: max_duration * unit / friction_velocity,
             splitting: Splitting::geometric(15.0 * unit, inner * unit, 2.0, 2),
+            sweeps: None,
         }
     }
 
@@ -96,6 +129,17 @@ impl Excursions {
         }
         if self.splitting.levels.first().is_some_and(|&d| d > self.layer) {
             return Err(SceneError::new("splitting.levels", self.splitting.levels[0], "must lie within the layer"));
+        }
+        if let Some(s) = &self.sweeps {
+            if !(s.enter.is_finite() && s.enter > 0.0) {
+                return Err(SceneError::new("sweeps.enter", s.enter, "must be finite and positive"));
+            }
+            if !(s.leave.is_finite() && s.leave < s.enter) {
+                return Err(SceneError::new("sweeps.leave", s.leave, "must be finite and below sweeps.enter"));
+            }
+            if !(s.sampling > 0.0 && s.sampling <= 1e6) {
+                return Err(SceneError::new("sweeps.sampling", s.sampling, "must be in (0, 1e6]"));
+            }
         }
         self.splitting.validate()
     }
@@ -270,6 +314,25 @@ mod tests {
         let s = Splitting::geometric(0.1, 1e-4, 10.0, 2);
         assert_eq!(s.levels.len(), 4);
         assert!((s.levels[3] - 1e-4).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_sweeps_name_the_field_and_need_a_channel() {
+        let with = |enter, leave, sampling| Excursions {
+            sweeps: Some(Sweeps { enter, leave, sampling }),
+            ..Excursions::in_wall_units(0.3, 1.5e-5, 0.2, 1.0, 1e4)
+        };
+        assert!(with(3.0, 2.0, 10.0).validate().is_ok());
+        assert_eq!(with(f64::NAN, 2.0, 10.0).validate().unwrap_err().field, "sweeps.enter");
+        assert_eq!(with(3.0, 3.0, 10.0).validate().unwrap_err().field, "sweeps.leave");
+        assert_eq!(with(3.0, 2.0, 0.0).validate().unwrap_err().field, "sweeps.sampling");
+        let mut room = Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 60.0);
+        room.excursions = Some(with(3.0, 2.0, 10.0));
+        let injection = Injection::new(1, crate::SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
+        assert_eq!(room.validate(&injection).unwrap_err().field, "sweeps");
+        let mut channel = Scene::new(crate::Geometry::Channel { length: 0.1, width: 0.1, height: 0.01 }, 1e-4, 1.0);
+        channel.excursions = Some(with(3.0, 2.0, 10.0));
+        assert!(channel.validate(&injection).is_ok());
     }
 
     #[test]

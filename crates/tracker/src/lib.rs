@@ -78,7 +78,7 @@ mod track;
 
 pub use air::{Aerodynamics, Air};
 pub use decay::{log_linear_fit, Comparison, DecayCurve, DecayFit, LogLinear};
-pub use excursions::{Excursions, Splitting};
+pub use excursions::{Excursions, Splitting, Sweeps};
 pub use flow::Flow;
 pub use furnishing::Furnishing;
 pub use geometry::{Geometry, Orientation, Wall};

@@ -310,6 +310,9 @@ impl Scene {
         }
         if let Some(excursions) = &self.excursions {
             excursions.validate()?;
+            if excursions.sweeps.is_some() && !matches!(self.geometry, Geometry::Channel { .. }) {
+                return Err(SceneError::new("sweeps", 0.0, "are for a channel only"));
+            }
         }
         if !(self.air_exchange.is_finite() && self.air_exchange >= 0.0) {
             return Err(SceneError::new("air_exchange", self.air_exchange, "must be finite and not negative"));

@@ -20,7 +20,7 @@
 use crate::air::Air;
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
 use crate::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
-use crate::excursions::Excursions;
+use crate::excursions::{Excursions, Sweeps};
 use crate::filtration::Filtration;
 use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
@@ -90,6 +90,25 @@ pub const CHANNEL_LONGEST_EXCURSION: f64 = 1e5;
 /// same `V+` within the errors; stopping one level further out (0.47) gave 22, 20 and 25.
 pub const CHANNEL_INNERMOST_LEVEL: f64 = 0.2;
 
+/// The channel study catches strong sweeps on their way to the near-wall layer
+/// ([`Excursions::sweeps`]) from this `tau+` on: where a strong sweep's wall-ward speed (a
+/// few `u*`) times the particle's relaxation time carries it across the sublayer's few wall
+/// units. At `tau+` 0.1-1, where Brownian motion and the turbulence within the sublayer carry
+/// the particles the last part of the way, sweeps took 2-2.5 times the run time for errors
+/// 3-25 % smaller, so they stay off there.
+pub const CHANNEL_SWEEPS_FROM: f64 = 3.0;
+
+/// The sweeps the channel study catches: the fluid's wall-ward `zeta` above 3 (0.13 % of the
+/// time in a Gaussian) until it falls below 2, ten excursions per such entry, and then one
+/// per crossing of the layer (not the three the studies start elsewhere). Measured at
+/// `tau+ = 3`, 1000 particles (efficiency `1 / (relative error^2 time)`): without sweeps the
+/// relative error was 19-40 % in 8-9 s (three seeds; efficiency 0.7-3.6); with these,
+/// 11-16 % in 2.8-4.4 s (five seeds; 13-24); with three excursions per crossing and thirty
+/// per sweep, 7-10 % in 8-12 s (about the same efficiency, at three times the cost). With
+/// those, thresholds of 2.5 or 3.5, and sweeps counted only within 45, 60 or 100 wall units
+/// of the wall, did no better. The table is in docs/performance-log.md.
+pub const CHANNEL_SWEEPS: Sweeps = Sweeps { enter: 3.0, leave: 2.0, sampling: 10.0 };
+
 /// The smallest deposition velocity (Lai & Nazaroff's, m/s) of a surface whose figure a room
 /// study resolves to its `target_error`: below it the surface takes a negligible share of the
 /// room's deposition.
@@ -108,11 +127,14 @@ fn with_excursions(
     inner: f64,
     max_duration: f64,
     max: u32,
+    sweeps: Option<Sweeps>,
 ) -> Result<Scene, SceneError> {
     let u_star = scene.flow.friction_velocity().unwrap_or(0.0);
     if u_star > 0.0 {
         let nu = scene.air.kinematic_viscosity();
-        let excursions = Excursions::in_wall_units(u_star, nu, inner, STUDY_SAMPLING, max_duration);
+        // With sweeps, one excursion per crossing of the layer: the sweeps carry the deposits.
+        let sampling = if sweeps.is_some() { 1.0 } else { STUDY_SAMPLING };
+        let excursions = Excursions { sweeps, ..Excursions::in_wall_units(u_star, nu, inner, sampling, max_duration) };
         let (_, rounds) = PILOT;
         scene.excursions = Some(excursions.calibrated(&scene, injection, pilot.max(1), rounds, max)?);
     }
@@ -288,7 +310,7 @@ impl RoomStudy {
                 // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
                 // pilot has 500 particles, or a quarter of a smaller first run.
                 let pilot = (self.count / PILOT.0).max(self.count.min(500));
-                scene = with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16).map_err(for_diameters)?;
+                scene = with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16, None).map_err(for_diameters)?;
             }
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             let mut result = run(&scene, &injection).map_err(for_diameters)?;
@@ -486,8 +508,9 @@ impl ChannelStudy {
                 // Factors up to 4 (larger ones made the deep branches, which live long in
                 // the Brownian sublayer, too many: 3-5 times the run time for the same error).
                 let pilot = (count / PILOT.0).max(1);
-                scene =
-                    with_excursions(scene, &injection, pilot, CHANNEL_INNERMOST_LEVEL, CHANNEL_LONGEST_EXCURSION, 4)?;
+                let sweeps = (tp >= CHANNEL_SWEEPS_FROM).then_some(CHANNEL_SWEEPS);
+                let (inner, longest) = (CHANNEL_INNERMOST_LEVEL, CHANNEL_LONGEST_EXCURSION);
+                scene = with_excursions(scene, &injection, pilot, inner, longest, 4, sweeps)?;
             }
             let all_walls = |r: &Run| r.deposition_velocity(&(0..r.walls.len()).collect::<Vec<_>>());
             let mut result = run(&scene, &injection)?;

@@ -1,7 +1,7 @@
 //! The room and channel studies against their correlations, on small runs, and the near-wall
 //! excursions against plain tracking.
 
-use depo_tracker::studies::{ChannelStudy, RoomStudy, CHANNEL_INNERMOST_LEVEL};
+use depo_tracker::studies::{ChannelStudy, RoomStudy, CHANNEL_INNERMOST_LEVEL, CHANNEL_SWEEPS};
 use depo_tracker::{run, Estimate, Excursions, Injection, NearWall, Scene, SizeDistribution};
 
 /// A `tau+` no particle can have at the channel's friction velocity is an error naming it, not
@@ -246,6 +246,38 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
     let excursions = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e4);
     let (plain, split) = compare(&scene, &injection, excursions, 3000, &[0, 1]);
     assert!(z(plain, split) < 3.0, "tau+ 10: plain {plain:?}, excursions {split:?}");
+}
+
+/// Strong sweeps caught before the layer (the channel study's excursions from `tau+ = 3`)
+/// keep the estimate unbiased: at `tau+ = 10`, where plain tracking resolves `V+` and the
+/// sweeps carry the deposits, the two agree within three combined standard errors; and the
+/// sweeps do start excursions of their own (more than the layer's crossings alone start).
+#[test]
+fn excursions_with_sweeps_agree_with_plain_tracking() {
+    let channel = ChannelStudy::default();
+    let mut scene = channel.scene.clone();
+    scene.average_from = 0.5 * scene.duration;
+    let nu = scene.air.kinematic_viscosity();
+    let d = depo_tracker::correlations::diameter_for_tau_plus(10.0, 1000.0, &scene.air, 0.3).unwrap();
+    let injection = Injection::new(400, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
+    let plain = run(&scene, &Injection { count: 3000, ..injection }).unwrap();
+    let mut split = scene.clone();
+    split.seed += 1;
+    let layer_only = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 1.0, 1e4);
+    let with_sweeps = Excursions { sweeps: Some(CHANNEL_SWEEPS), ..layer_only.clone() };
+    let started = |excursions: Excursions| {
+        let mut scene = split.clone();
+        scene.excursions = Some(excursions.calibrated(&scene, &injection, 100, 1, 4).unwrap());
+        let result = run(&scene, &injection).unwrap();
+        let started: u32 = result.particles.iter().map(|p| p.excursions).sum();
+        (result, started)
+    };
+    let (split, with) = started(with_sweeps);
+    let (_, without) = started(layer_only);
+    assert!(with > without + without / 10, "excursions started: {with} with sweeps, {without} without");
+    let (a, b) = (plain.deposition_velocity(&[0, 1]), split.deposition_velocity(&[0, 1]));
+    assert!(a.events > 150 && b.error < 0.1 * b.value, "plain {a:?}, excursions {b:?}");
+    assert!(z(a, b) < 3.0, "tau+ 10 with sweeps: plain {a:?}, excursions {b:?}");
 }
 
 /// The same with the intermittent near-wall model, whose deposits at `tau+ = 3` come from

@@ -182,6 +182,35 @@ fn free_flight_gap(p: &Prepared<'_>, flyer: &Flyer) -> f64 {
     gap
 }
 
+/// Where a particle stands against the excursions' region ([`Excursions::sweeps`]): inside
+/// (within the layer, or in a strong sweep), outside, or between a sweep's two thresholds,
+/// where it stays as it was.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Zone {
+    Inside,
+    Between,
+    Outside,
+}
+
+#[inline]
+fn zone(p: &Prepared<'_>, excursions: &Excursions, flyer: &Flyer) -> Zone {
+    if wall_gap(p, flyer.x, flyer.body.contact) < excursions.layer {
+        return Zone::Inside;
+    }
+    let Some(sweeps) = &excursions.sweeps else { return Zone::Outside };
+    // A channel's walls are across z, and `zeta` points along +z: towards the nearer wall is
+    // `-sign zeta`, `sign` that of d(distance)/dz.
+    let (_, sign) = super::wall_distance(flyer.x.z, p.size[2]);
+    let wallward = -sign * flyer.zeta[2];
+    if wallward > sweeps.enter {
+        Zone::Inside
+    } else if wallward < sweeps.leave {
+        Zone::Outside
+    } else {
+        Zone::Between
+    }
+}
+
 /// Tracks injected particle `id`, with an excursion at each sampled inward crossing of the
 /// layer within the window; returns its record and its tally.
 pub(crate) fn run_with_excursions<
@@ -205,7 +234,7 @@ pub(crate) fn run_with_excursions<
     let mut scratch = vec![WallTally::default(); tally.len()];
 
     let mut flyer = Flyer::inject(p, id, TURB, BROWN);
-    let mut inside = wall_gap(p, flyer.x, flyer.body.contact) < excursions.layer;
+    let mut inside = zone(p, excursions, &flyer) == Zone::Inside;
     for n in 0..flyer.end {
         let t0 = n as f64 * dt;
         match flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, tally) {
@@ -215,18 +244,26 @@ pub(crate) fn run_with_excursions<
             }
             Step::Airborne => {
                 stats.exposure += overlap(t0, t0 + dt, window);
-                let entered = wall_gap(p, flyer.x, flyer.body.contact) < excursions.layer;
+                let entered = match zone(p, excursions, &flyer) {
+                    Zone::Inside => true,
+                    Zone::Between => inside,
+                    Zone::Outside => false,
+                };
                 let t1 = t0 + dt;
                 if entered && !inside && t1 >= window[0] && t1 <= window[1] {
-                    // `sampling` excursions per crossing on average: its whole part, and one
-                    // more with the probability of its fraction.
-                    let count = excursions.sampling.floor() as u64
-                        + u64::from(sampler.random::<f64>() < excursions.sampling.fract());
+                    // Entered by a sweep (outside the layer) or across the layer.
+                    let sampling = match &excursions.sweeps {
+                        Some(s) if wall_gap(p, flyer.x, flyer.body.contact) >= excursions.layer => s.sampling,
+                        _ => excursions.sampling,
+                    };
+                    // `sampling` excursions per entry on average: its whole part, and one more
+                    // with the probability of its fraction.
+                    let count = sampling.floor() as u64 + u64::from(sampler.random::<f64>() < sampling.fract());
                     for _ in 0..count {
                         let streams = (p.scene.seed, id, &mut copies);
                         excursion::<BROWN, TURB, FINITE_RE, EULER, LIFT>(
                             p,
-                            excursions,
+                            (excursions, sampling),
                             &flyer,
                             n + 1,
                             streams,
@@ -252,8 +289,9 @@ struct Branch {
     next: usize,
 }
 
-/// One excursion from `start` (just inside the layer, before step `next`): its branches'
-/// weighted deposits, times `1 / sampling`, go to `stats`.
+/// One excursion from `start` (just inside the region, before step `next`), one of
+/// `sampling` per entry on average: its branches' weighted deposits, times `1 / sampling`,
+/// go to `stats`.
 ///
 /// Ventilation ([`Scene::air_exchange`](crate::Scene::air_exchange)) does not touch the
 /// excursions: it exhausts particles at a rate that does not depend on where they are, so it
@@ -268,7 +306,7 @@ struct Branch {
 #[allow(clippy::too_many_arguments)]
 fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
     p: &Prepared<'_>,
-    excursions: &Excursions,
+    (excursions, sampling): (&Excursions, f64),
     start: &Flyer,
     next: usize,
     (seed, id, copies): (u64, u64, &mut u64),
@@ -284,9 +322,9 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
     *copies += 1;
     let flyer = start.with_streams(Normals::from_rng(&mut branch_rng(seed, id, *copies)), next, per_step);
     let level = splitting.level(free_flight_gap(p, &flyer));
-    let first = Branch { flyer, weight: 1.0 / excursions.sampling, level: 0, next };
+    let first = Branch { flyer, weight: 1.0 / sampling, level: 0, next };
     let target = first.weight * splitting.weight(level);
-    window_weight(first, level, target, &mut stack, (seed, id, copies, per_step), roulette, stats, excursions.sampling);
+    window_weight(first, level, target, &mut stack, (seed, id, copies, per_step), roulette, stats, sampling);
 
     while let Some(Branch { mut flyer, weight, level, next }) = stack.pop() {
         if next >= last {
@@ -305,8 +343,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
                 }
                 Step::Left(..) => break,
                 Step::Airborne => {
-                    let gap = wall_gap(p, flyer.x, flyer.body.contact);
-                    if gap >= excursions.layer {
+                    if zone(p, excursions, &flyer) == Zone::Outside {
                         break;
                     }
                     let new_level = splitting.level(free_flight_gap(p, &flyer));
@@ -316,19 +353,10 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
                     // split and rouletted over and over.
                     if new_level > level || new_level + 1 < level {
                         // Split or roulette; what goes on is taken from the stack next.
-                        let target = splitting.weight(new_level) / excursions.sampling;
+                        let target = splitting.weight(new_level) / sampling;
                         let branch = Branch { flyer, weight, level, next: n + 1 };
                         let streams = (seed, id, &mut *copies, per_step);
-                        window_weight(
-                            branch,
-                            new_level,
-                            target,
-                            &mut stack,
-                            streams,
-                            roulette,
-                            stats,
-                            excursions.sampling,
-                        );
+                        window_weight(branch, new_level, target, &mut stack, streams, roulette, stats, sampling);
                         break;
                     }
                 }
