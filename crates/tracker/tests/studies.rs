@@ -282,7 +282,8 @@ fn excursions_with_sweeps_agree_with_plain_tracking() {
 
 /// The same with the intermittent near-wall model, whose deposits at `tau+ = 3` come from
 /// rare strong sweeps: the excursions' estimate against plain tracking, within three combined
-/// standard errors.
+/// standard errors, from the layer alone and with the sweeps caught before it (as the
+/// channel study takes them at this `tau+`).
 #[test]
 fn excursions_agree_with_plain_tracking_under_the_intermittent_model() {
     let channel = ChannelStudy::default();
@@ -293,16 +294,18 @@ fn excursions_agree_with_plain_tracking_under_the_intermittent_model() {
     let d = depo_tracker::correlations::diameter_for_tau_plus(3.0, 1000.0, &scene.air, 0.3).unwrap();
     let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
     let plain = run(&scene, &Injection { count: 6000, ..injection }).unwrap();
-    let mut split = scene.clone();
-    split.seed += 1;
-    let excursions = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e5)
-        .calibrated(&split, &injection, 500, 1, 4)
-        .unwrap();
-    split.excursions = Some(excursions);
-    let split = run(&split, &injection).unwrap();
-    let (a, b) = (plain.deposition_velocity(&[0, 1]), split.deposition_velocity(&[0, 1]));
-    assert!(a.events > 100 && b.error < 0.2 * b.value, "plain {a:?}, excursions {b:?}");
-    assert!(z(a, b) < 3.0, "tau+ 3, intermittent: plain {a:?}, excursions {b:?}");
+    let a = plain.deposition_velocity(&[0, 1]);
+    assert!(a.events > 100, "plain {a:?}");
+    let layer = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e5);
+    let sweeps = Excursions { sampling: 1.0, sweeps: Some(CHANNEL_SWEEPS), ..layer.clone() };
+    for (excursions, what) in [(layer, "layer"), (sweeps, "sweeps")] {
+        let mut split = scene.clone();
+        split.seed += 1;
+        split.excursions = Some(excursions.calibrated(&split, &injection, 500, 1, 4).unwrap());
+        let b = run(&split, &injection).unwrap().deposition_velocity(&[0, 1]);
+        assert!(b.error < 0.2 * b.value, "{what}: plain {a:?}, excursions {b:?}");
+        assert!(z(a, b) < 3.0, "tau+ 3, intermittent, {what}: plain {a:?}, excursions {b:?}");
+    }
 }
 
 /// With excursions too, the same seed gives the same estimate, bit for bit, on one thread and
