@@ -575,6 +575,28 @@ fn channel_flags_a_v_plus_left_above_its_target_error() {
     assert_eq!(report["target_error"], 0.05, "{report}");
 }
 
+/// The channel says which points caught strong sweeps before the near-wall layer (from
+/// `tau+ = 3`): in the JSON's method and in the table, with a note saying what it means.
+#[test]
+fn channel_names_the_points_that_caught_sweeps() {
+    let dir = scratch("channel-sweeps");
+    let scene = dir.join("sweeps.toml");
+    std::fs::write(
+        &scene,
+        "[particles]\ntau_plus = [1.0, 3.0, 10.0]\ncount = 40\nexcursion_count = 40\ntarget_error = 0\n[run]\nduration_plus = 400.0\n",
+    )
+    .unwrap();
+    let report = ok_json(&["channel", scene.to_str().unwrap(), "--format", "json"]);
+    let methods: Vec<&str> = (0..3).map(|i| report["points"][i]["method"].as_str().unwrap()).collect();
+    assert_eq!(methods, ["excursions", "excursions+sweeps", "plain"], "{report}");
+    let out = depo(&["channel", scene.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let table = String::from_utf8(out.stdout).unwrap();
+    let row = |tau: &str| table.lines().find(|l| l.trim_start().starts_with(tau)).unwrap().to_string();
+    assert!(row("3.000").contains("excursions+sweeps") && !row("1.000").contains("sweeps"), "{table}");
+    assert!(table.contains("\"+sweeps\": strong sweeps"), "{table}");
+}
+
 #[test]
 fn scene_file_errors_name_the_file_line_and_key() {
     let dir = scratch("errors");

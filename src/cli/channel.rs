@@ -41,7 +41,8 @@ struct Row {
     particle_steps: u64,
     /// Particles run at this `tau+`.
     particles: usize,
-    /// "excursions" or "plain".
+    /// "excursions", "excursions+sweeps" (strong sweeps caught before the layer too) or
+    /// "plain".
     method: &'static str,
     /// With excursions: the share of their weight given up at their longest duration.
     excursions_truncated: Option<f64>,
@@ -98,7 +99,11 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             ratio_to_wood: p.v_plus.value / p.wood,
             particle_steps: p.particle_steps,
             particles: p.particles,
-            method: if p.excursions.is_some() { "excursions" } else { "plain" },
+            method: match (p.excursions, p.sweeps) {
+                (Some(_), true) => "excursions+sweeps",
+                (Some(_), false) => "excursions",
+                (None, _) => "plain",
+            },
             excursions_truncated: p.excursions,
             unresolved: study.target_error.is_some_and(|t| p.v_plus.events == 0 || p.v_plus.error > t * p.v_plus.value),
             wall_tally: p.tally.into(),
@@ -177,9 +182,8 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             );
             for r in &rows {
                 let method = match r.excursions_truncated {
-                    Some(t) if t > 1e-3 => format!("excursions ({:.1} %)", 100.0 * t),
-                    Some(_) => "excursions".to_string(),
-                    None => "plain".to_string(),
+                    Some(t) if t > 1e-3 => format!("{} ({:.1} %)", r.method, 100.0 * t),
+                    _ => r.method.to_string(),
                 };
                 let ratio =
                     if r.v_plus.upper_bound.is_some() { "-".to_string() } else { format!("{:.2}", r.ratio_to_wood) };
@@ -197,6 +201,9 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 );
             }
             out!("ratio = depo / Wood. {ERROR_NOTE}");
+            if rows.iter().any(|r| r.method == "excursions+sweeps") {
+                out!("\"+sweeps\": strong sweeps (the fluid's wall-ward velocity above 3 standard deviations) anywhere in the channel start excursions too, where inertia lets them carry particles to the wall.");
+            }
             if let Some(target) = study.target_error.filter(|_| rows.iter().any(|r| r.unresolved)) {
                 out!(
                     "* unresolved: no deposit event, or a relative standard error above the {:.0} % target that {} times the first particles would not reach.",

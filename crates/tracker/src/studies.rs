@@ -486,6 +486,9 @@ pub struct ChannelPoint {
     /// Whether deposits were counted by near-wall excursions, and if so the share of their
     /// weight given up at their longest duration ([`Run::truncated_share`](crate::Run::truncated_share)).
     pub excursions: Option<f64>,
+    /// Whether the excursions also caught strong sweeps before the layer
+    /// ([`Excursions::sweeps`]; from [`CHANNEL_SWEEPS_FROM`]).
+    pub sweeps: bool,
     /// The wall-law tallies summed over both walls.
     pub tally: WallTally,
 }
@@ -537,6 +540,7 @@ impl ChannelStudy {
                 particle_steps: result.particle_steps(),
                 particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
+                sweeps: scene.excursions.as_ref().is_some_and(|e| e.sweeps.is_some()),
                 tally: total(&result.tallies),
             });
             progress(i + 1);
