@@ -1,7 +1,9 @@
 //! Plain tracking with near-wall excursions ([`Excursions`]): each injected particle is
-//! tracked as alone, and each of its sampled inward crossings of the near-wall layer starts an
-//! excursion, whose branches (split toward the wall, rouletted on the way out) are taken depth
-//! first. The order, and with it every random number, depends on the particle alone.
+//! tracked as alone, and each of its entries into the excursions' region (an inward crossing
+//! of the near-wall layer, or in a channel with [`Excursions::sweeps`] a strong sweep) starts
+//! sampled excursions, whose branches (split toward the wall, rouletted on the way out) are
+//! taken depth first. The order, and with it every random number, depends on the particle
+//! alone.
 
 use glam::DVec3;
 use rand::rngs::Xoshiro256PlusPlus;
@@ -211,8 +213,8 @@ fn zone(p: &Prepared<'_>, excursions: &Excursions, flyer: &Flyer) -> Zone {
     }
 }
 
-/// Tracks injected particle `id`, with an excursion at each sampled inward crossing of the
-/// layer within the window; returns its record and its tally.
+/// Tracks injected particle `id`, with sampled excursions at each of its entries into the
+/// excursions' region within the window; returns its record and its tally.
 pub(crate) fn run_with_excursions<
     const BROWN: bool,
     const TURB: bool,
