@@ -10,10 +10,15 @@ fn depo(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_depo")).args(args).output().expect("run depo")
 }
 
-fn ok_json(args: &[&str]) -> Value {
+/// stdout of a run that must succeed.
+fn ok_text(args: &[&str]) -> String {
     let out = depo(args);
     assert!(out.status.success(), "depo {args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("JSON output")
+    String::from_utf8(out.stdout).expect("UTF-8 output")
+}
+
+fn ok_json(args: &[&str]) -> Value {
+    serde_json::from_str(&ok_text(args)).expect("JSON output")
 }
 
 /// A user error: non-zero exit, one line on stderr that names `what`, no panic.
@@ -556,11 +561,7 @@ fn channel_flags_a_v_plus_left_above_its_target_error() {
     let scene = dir.join("few.toml");
     std::fs::write(&scene, "[particles]\ntau_plus = [10.0]\ncount = 60\ntarget_error = 0.05\nmax_factor = 1.0\n")
         .unwrap();
-    let table = |out: Output| {
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        String::from_utf8(out.stdout).unwrap()
-    };
-    let few = table(depo(&["channel", scene.to_str().unwrap()]));
+    let few = ok_text(&["channel", scene.to_str().unwrap()]);
     let row = few.lines().find(|l| l.trim_start().starts_with("10.000")).unwrap();
     assert!(row.contains("]*"), "{few}");
     assert!(few.contains("* unresolved: no deposit event, or a relative standard error above the 5 % target"), "{few}");
@@ -568,7 +569,7 @@ fn channel_flags_a_v_plus_left_above_its_target_error() {
     assert_eq!(report["points"][0]["unresolved"], true, "{report}");
     std::fs::write(&scene, "[particles]\ntau_plus = [10.0]\ncount = 60\ntarget_error = 0.05\nmax_factor = 60.0\n")
         .unwrap();
-    let enough = table(depo(&["channel", scene.to_str().unwrap()]));
+    let enough = ok_text(&["channel", scene.to_str().unwrap()]);
     assert!(!enough.contains("]*") && !enough.contains("* unresolved"), "{enough}");
     let report = ok_json(&["channel", scene.to_str().unwrap(), "--format", "json"]);
     assert_eq!(report["points"][0]["unresolved"], false, "{report}");
@@ -589,9 +590,7 @@ fn channel_names_the_points_that_caught_sweeps() {
     let report = ok_json(&["channel", scene.to_str().unwrap(), "--format", "json"]);
     let methods: Vec<&str> = (0..3).map(|i| report["points"][i]["method"].as_str().unwrap()).collect();
     assert_eq!(methods, ["excursions", "excursions+sweeps", "plain"], "{report}");
-    let out = depo(&["channel", scene.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let table = String::from_utf8(out.stdout).unwrap();
+    let table = ok_text(&["channel", scene.to_str().unwrap()]);
     let row = |tau: &str| table.lines().find(|l| l.trim_start().starts_with(tau)).unwrap().to_string();
     assert!(row("3.000").contains("excursions+sweeps") && !row("1.000").contains("sweeps"), "{table}");
     assert!(table.contains("\"+sweeps\": strong sweeps"), "{table}");

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use clap::Args as ClapArgs;
 use depo::tracker::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
 use depo::tracker::measurements::SIPPOLA_NAZAROFF_2004;
+use depo::tracker::studies::CHANNEL_SWEEPS;
 use depo::tracker::{Air, Geometry};
 use serde::Serialize;
 
@@ -202,7 +203,10 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             }
             out!("ratio = depo / Wood. {ERROR_NOTE}");
             if rows.iter().any(|r| r.method == "excursions+sweeps") {
-                out!("\"+sweeps\": strong sweeps (the fluid's wall-ward velocity above 3 standard deviations) anywhere in the channel start excursions too, where inertia lets them carry particles to the wall.");
+                out!(
+                    "\"+sweeps\": strong sweeps (the fluid's wall-ward velocity above {} standard deviations) anywhere in the channel start excursions too, where inertia lets them carry particles to the wall.",
+                    CHANNEL_SWEEPS.enter
+                );
             }
             if let Some(target) = study.target_error.filter(|_| rows.iter().any(|r| r.unresolved)) {
                 out!(
