@@ -185,17 +185,37 @@ pub(crate) struct Prepared<'a> {
     /// Whether each step takes the turbulence half a step on ([`Scheme::Midpoint`] in a
     /// turbulent scene).
     pub midpoint: bool,
+    /// The step this preparation is for, s: the scene's, or its excursions' coarse step.
+    pub dt: f64,
+    /// The scene prepared for the excursions' coarse steps ([`Excursions::coarse_factor`]
+    /// above 1, in a scene without furnishings or openings); `None` otherwise.
+    ///
+    /// [`Excursions::coarse_factor`]: crate::Excursions::coarse_factor
+    pub coarse: Option<Box<Prepared<'a>>>,
 }
 
 impl<'a> Prepared<'a> {
     pub fn new(scene: &'a Scene, injection: &'a Injection) -> Self {
+        let mut prepared = Self::stepping(scene, injection, scene.dt);
+        let factor = scene.excursions.as_ref().map_or(1, |e| e.coarse_factor);
+        if factor > 1 && prepared.boxes.is_empty() && prepared.mean_flow.is_none() {
+            let mut coarse = Self::stepping(scene, injection, scene.dt * f64::from(factor));
+            // Second order in `dt |d sigma/dy|`, whatever the scene's scheme.
+            coarse.midpoint = coarse.field.turbulence.is_some();
+            prepared.coarse = Some(Box::new(coarse));
+        }
+        prepared
+    }
+
+    /// The scene prepared for steps of `dt`.
+    fn stepping(scene: &'a Scene, injection: &'a Injection, dt: f64) -> Self {
         let size = scene.geometry.size();
         let nu = scene.air.kinematic_viscosity();
         let walled = scene.geometry.walled();
-        let mut field = FlowField::new(&scene.flow, size, nu, scene.dt, scene.drift_correction);
+        let mut field = FlowField::new(&scene.flow, size, nu, dt, scene.drift_correction);
         if let (NearWall::Intermittent, Flow::TurbulentChannel { friction_velocity }) = (scene.near_wall, scene.flow) {
             field.intermittent =
-                Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, scene.dt, scene.drift_correction));
+                Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, dt, scene.drift_correction));
         }
         let midpoint = scene.scheme == Scheme::Midpoint && field.turbulence.is_some();
         Self {
@@ -217,6 +237,8 @@ impl<'a> Prepared<'a> {
             steps: scene.steps(),
             window: [scene.average_from, scene.steps() as f64 * scene.dt],
             midpoint,
+            dt,
+            coarse: None,
         }
     }
 }
@@ -300,7 +322,7 @@ impl Body {
             brownian: [0.0; 3],
             thermal_variance: kt,
         };
-        body.relax_in(aero.relaxation_time, scene.dt);
+        body.relax_in(aero.relaxation_time, p.dt);
         if scene.brownian && scene.scheme != Scheme::Euler {
             body.contact += CONTINUITY_CORRECTION * body.brownian[0];
         }
@@ -618,7 +640,7 @@ impl Flyer {
         }
         let target = u0 + self.body.settling;
         // Over h = dt / 2: x + target h + (v - target) tau (1 - exp(-h / tau)).
-        let h = 0.5 * p.scene.dt;
+        let h = 0.5 * p.dt;
         let half = x + target * h + (v - target) * (self.body.tau * (1.0 - self.body.decay.sqrt()));
         if inside(half, self.body.contact, p) {
             half
@@ -638,7 +660,7 @@ impl Flyer {
     ) -> Step {
         let scene = p.scene;
         let field = &p.field;
-        let dt = scene.dt;
+        let dt = p.dt;
         let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
         let (x, v) = (self.x, self.v);
         // Where the flow is read: the start of the step, or half a step on (`Scheme::Midpoint`).

@@ -13,7 +13,8 @@ use crate::excursions::{Excursions, MAX_LEVELS};
 use crate::furnishing::Furnishing;
 use crate::noise::{branch_rng, particle_rng, Normals};
 
-use super::{normals_per_step, Fate, Flyer, Prepared, Record, Step, WallTally};
+use super::{normals_per_step, wall_distance, Body, Fate, Flyer, Prepared, Record, Step, WallTally};
+use crate::run::MAX_STEP_GRADIENT;
 
 /// What one injected particle contributed to a run's averaging window.
 #[derive(Clone, Debug, PartialEq)]
@@ -289,6 +290,9 @@ struct Branch {
     weight: f64,
     level: usize,
     next: usize,
+    /// The excursion's clock, in the scene's steps ([`Excursions::max_duration`] is counted
+    /// on it; a coarse step counts as several).
+    clock: usize,
 }
 
 /// One excursion from `start` (just inside the region, before step `next`), one of
@@ -319,26 +323,50 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
     let splitting = &excursions.splitting;
     stats.excursions += 1;
     let (_, per_step) = normals_per_step(TURB, BROWN, EULER);
+    // The branches' clock, in the scene's steps: a coarse step counts `factor` of them.
     let last = next + (excursions.max_duration / p.scene.dt).ceil() as usize;
+    let mut coarse = p.coarse.as_deref().map(|c| Coarse {
+        p: c,
+        body: Body::new(c, start.body.aero.diameter),
+        factor: (c.dt / p.dt).round() as usize,
+    });
     let mut stack = Vec::new();
     *copies += 1;
     let flyer = start.with_streams(Normals::from_rng(&mut branch_rng(seed, id, *copies)), next, per_step);
     let level = splitting.level(free_flight_gap(p, &flyer));
-    let first = Branch { flyer, weight: 1.0 / sampling, level: 0, next };
+    let first = Branch { flyer, weight: 1.0 / sampling, level: 0, next, clock: next };
     let target = first.weight * splitting.weight(level);
     window_weight(first, level, target, &mut stack, (seed, id, copies, per_step), roulette, stats, sampling);
 
-    while let Some(Branch { mut flyer, weight, level, next }) = stack.pop() {
-        if next >= last {
+    while let Some(Branch { mut flyer, weight, level, next, mut clock }) = stack.pop() {
+        if clock >= last {
             stats.truncated += weight;
             continue;
         }
-        for n in next..last {
-            if n + 1 == last {
+        let mut gap = free_flight_gap(p, &flyer);
+        let mut n = next;
+        loop {
+            // A coarse step where it cannot reach a wall and the turbulence is smooth enough
+            // for it, the scene's step elsewhere.
+            let coarse_step = coarse.as_mut().filter(|c| c.allows(&flyer, gap));
+            let ticks = coarse_step.as_ref().map_or(1, |c| c.factor);
+            let is_last = clock + ticks >= last;
+            if is_last {
                 // Its last step: whatever it does, it is given up after it.
                 stats.truncated += weight;
             }
-            match flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, scratch) {
+            let step = match coarse_step {
+                Some(c) => {
+                    std::mem::swap(&mut flyer.body, &mut c.body);
+                    let step = flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(c.p, n, scratch);
+                    std::mem::swap(&mut flyer.body, &mut c.body);
+                    step
+                }
+                None => flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, scratch),
+            };
+            n += 1;
+            clock += ticks;
+            match step {
                 Step::Left(Fate::Deposited(w), ..) => {
                     stats.add_deposit(w, weight);
                     break;
@@ -348,7 +376,8 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
                     if zone(p, excursions, &flyer) == Zone::Outside {
                         break;
                     }
-                    let new_level = splitting.level(free_flight_gap(p, &flyer));
+                    gap = free_flight_gap(p, &flyer);
+                    let new_level = splitting.level(gap);
                     // `level` is the level whose weight the branch carries. A branch splits as soon
                     // as it goes deeper, but plays roulette only two levels out: a branch
                     // that hovers at a level's edge (as Brownian motion makes it do) is not
@@ -356,14 +385,59 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
                     if new_level > level || new_level + 1 < level {
                         // Split or roulette; what goes on is taken from the stack next.
                         let target = splitting.weight(new_level) / sampling;
-                        let branch = Branch { flyer, weight, level, next: n + 1 };
+                        let branch = Branch { flyer, weight, level, next: n, clock };
                         let streams = (seed, id, &mut *copies, per_step);
                         window_weight(branch, new_level, target, &mut stack, streams, roulette, stats, sampling);
                         break;
                     }
                 }
             }
+            if is_last {
+                break;
+            }
         }
+    }
+}
+
+/// The excursions' coarse steps: the scene prepared for them, the particle's constants for
+/// them, and how many of the scene's steps one is.
+struct Coarse<'p, 'a> {
+    p: &'p Prepared<'a>,
+    body: Body,
+    factor: usize,
+}
+
+impl Coarse<'_, '_> {
+    /// Whether `flyer`, whose free-flight gap to the nearest wall is `gap` (m), may take a
+    /// coarse step: along every walled axis, the turbulence's rms changes by at most
+    /// [`MAX_STEP_GRADIENT`] over a coarse step (what the scene's own step must meet, so the
+    /// well-mixed drift stays accurate), and the farthest the particle can move towards a wall
+    /// in one (its relaxation towards the fluid velocity it sees, which is held over the step,
+    /// plus five standard deviations of its Brownian displacement) is less than `gap`. So a
+    /// coarse step neither reaches a wall nor steps over the turbulence's gradients.
+    #[inline]
+    fn allows(&self, flyer: &Flyer, gap: f64) -> bool {
+        let (c, body, dt) = (self.p, &self.body, self.p.dt);
+        let mut reach = 0.0_f64;
+        for a in 0..3 {
+            if !c.walled[a] {
+                continue;
+            }
+            let (sigma, slope) = match &c.field.turbulence {
+                Some(turbulence) => {
+                    let axis = turbulence[a].axis;
+                    let node = turbulence[a].table.at(wall_distance(flyer.x[axis], c.size[axis]).0);
+                    (node.sigma + node.rise.abs(), node.slope)
+                }
+                None => (0.0, 0.0),
+            };
+            if dt * slope.abs() > MAX_STEP_GRADIENT {
+                return false;
+            }
+            let fluid = sigma * flyer.zeta[a].abs() + body.settling[a].abs();
+            reach = reach.max(body.tau * flyer.v[a].abs() + (body.tau + dt) * fluid);
+        }
+        gap > reach + 5.0 * body.brownian[0]
     }
 }
 
@@ -398,7 +472,7 @@ fn window_weight(
         *copies += 1;
         let streams = Normals::from_rng(&mut branch_rng(seed, id, *copies));
         let flyer = branch.flyer.with_streams(streams, branch.next, per_step);
-        stack.push(Branch { flyer, weight: branch.weight, level, next: branch.next });
+        stack.push(Branch { flyer, weight: branch.weight, level, next: branch.next, clock: branch.clock });
     }
     stack.push(branch);
 }
@@ -410,6 +484,45 @@ const SAMPLER_SALT: u64 = 0x7f4a_7c15_9e37_79b9;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A coarse step is taken in the viscous sublayer, and not where it could reach the wall
+    /// (too close, or coasting towards it fast) nor where the turbulence's rms changes too
+    /// fast for it. Channel study's scene, `tau+ = 0.3`, coarse steps 8 times its step of 0.2
+    /// wall time units: the wall-normal rms' slope (Kallio & Reeks' fit, worked out by hand)
+    /// is 0.028 at `y+ = 2` and 0.038 at `y+ = 4`, so `1.6 x slope` is below
+    /// `MAX_STEP_GRADIENT` (0.05) at 2 and above it at 4.
+    #[test]
+    fn coarse_steps_keep_clear_of_the_wall_and_of_the_buffer_layer() {
+        let mut scene = crate::studies::ChannelStudy::default().scene;
+        let nu = scene.air.kinematic_viscosity();
+        let u_star = 0.3;
+        let unit = nu / u_star;
+        scene.excursions =
+            Some(Excursions { coarse_factor: 8, ..Excursions::in_wall_units(u_star, nu, 0.2, 3.0, 1e5) });
+        let d = crate::correlations::diameter_for_tau_plus(0.3, 1000.0, &scene.air, u_star).unwrap();
+        let injection = crate::Injection::new(1, crate::SizeDistribution::Monodisperse { diameter: d }, 1000.0);
+        let p = Prepared::new(&scene, &injection);
+        let c = p.coarse.as_deref().expect("coarse steps prepared");
+        assert!((c.dt / p.dt - 8.0).abs() < 1e-12);
+        let coarse = Coarse { p: c, body: Body::new(c, d), factor: 8 };
+        let mut flyer = Flyer::inject(&p, 0, true, true);
+        // `gap_plus`: from the particle's surface to the wall, in wall units.
+        let radius_plus = 0.5 * d / unit;
+        let allows = |flyer: &mut Flyer, gap_plus: f64, v_plus: f64| {
+            flyer.x.z = (gap_plus + radius_plus) * unit;
+            flyer.v = DVec3::new(0.0, 0.0, v_plus * u_star);
+            flyer.zeta = [1.0; 3];
+            coarse.allows(flyer, free_flight_gap(&p, flyer))
+        };
+        assert!(allows(&mut flyer, 0.5, 0.0), "0.5 wall units off, at rest");
+        assert!(allows(&mut flyer, 2.0, 0.0), "2 wall units off, at rest");
+        // Five Brownian standard deviations over a coarse step (Sc = 2.4e6, 1.6 wall time
+        // units): 5 sqrt(2 x 1.6 / 2.4e6) = 0.0058 wall units; the fluid adds little here.
+        assert!(allows(&mut flyer, 0.02, 0.0), "0.02 wall units off: beyond a coarse step's reach");
+        assert!(!allows(&mut flyer, 0.004, 0.0), "0.004 wall units off: a coarse step could reach the wall");
+        assert!(!allows(&mut flyer, 0.5, -2.0), "0.5 wall units off, coasting at 2 u* towards the wall");
+        assert!(!allows(&mut flyer, 4.0 - radius_plus, 0.0), "y+ 4: the rms changes too fast for a coarse step");
+    }
 
     #[test]
     fn a_box_s_free_flight_gap_is_a_wall_s_in_front_of_a_face_and_euclidean_beyond_an_edge() {
