@@ -134,7 +134,9 @@ pub const RESOLVED_FROM: f64 = 1e-7;
 pub const TARGET_MARGIN: f64 = 1.15;
 
 /// `scene` with the studies' excursions, calibrated by a pilot of `pilot` particles of
-/// `injection` with factors up to `max`; `inner` and `max_duration` in wall units.
+/// `injection` with factors up to `max`; `inner` and `max_duration` in wall units; `sweeps`
+/// and `coarse_factor` as [`Excursions`] has them.
+#[allow(clippy::too_many_arguments)]
 fn with_excursions(
     mut scene: Scene,
     injection: &Injection,
@@ -143,14 +145,13 @@ fn with_excursions(
     max_duration: f64,
     max: u32,
     sweeps: Option<Sweeps>,
+    coarse_factor: u32,
 ) -> Result<Scene, SceneError> {
     let u_star = scene.flow.friction_velocity().unwrap_or(0.0);
     if u_star > 0.0 {
         let nu = scene.air.kinematic_viscosity();
         // With sweeps, one excursion per crossing of the layer: the sweeps carry the deposits.
         let sampling = if sweeps.is_some() { 1.0 } else { STUDY_SAMPLING };
-        // Without sweeps the branches hover in the viscous sublayer: coarse steps there.
-        let coarse_factor = if sweeps.is_some() { 1 } else { CHANNEL_COARSE_FACTOR };
         let excursions = Excursions {
             sweeps,
             coarse_factor,
@@ -331,7 +332,8 @@ impl RoomStudy {
                 // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
                 // pilot has 500 particles, or a quarter of a smaller first run.
                 let pilot = (self.count / PILOT.0).max(self.count.min(500));
-                scene = with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16, None).map_err(for_diameters)?;
+                scene =
+                    with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16, None, 1).map_err(for_diameters)?;
             }
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             let mut result = run(&scene, &injection).map_err(for_diameters)?;
@@ -534,7 +536,9 @@ impl ChannelStudy {
                 let pilot = (count / PILOT.0).max(1);
                 let sweeps = (tp >= CHANNEL_SWEEPS_FROM).then_some(CHANNEL_SWEEPS);
                 let (inner, longest) = (CHANNEL_INNERMOST_LEVEL, CHANNEL_LONGEST_EXCURSION);
-                scene = with_excursions(scene, &injection, pilot, inner, longest, 4, sweeps)?;
+                // Without sweeps the branches hover in the viscous sublayer: coarse steps there.
+                let coarse = if sweeps.is_some() { 1 } else { CHANNEL_COARSE_FACTOR };
+                scene = with_excursions(scene, &injection, pilot, inner, longest, 4, sweeps, coarse)?;
             }
             let all_walls = |r: &Run| r.deposition_velocity(&(0..r.walls.len()).collect::<Vec<_>>());
             let mut result = run(&scene, &injection)?;
