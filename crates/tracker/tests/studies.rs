@@ -47,12 +47,34 @@ fn a_channel_study_runs_more_particles_where_v_plus_needs_them() {
     };
     for p in study.run(|_| {}).unwrap() {
         assert!(p.particles > 600, "{p:?}");
-        assert!(p.v_plus.error < 0.055 * p.v_plus.value, "{p:?}");
+        assert!(p.v_plus.error <= 0.05 * p.v_plus.value, "{p:?}");
     }
     let capped = ChannelStudy { max_factor: 1.5, ..study };
     for p in capped.run(|_| {}).unwrap() {
         assert_eq!(p.particles, 300, "{p:?}");
         assert!(p.v_plus.error > 0.08 * p.v_plus.value, "{p:?}");
+    }
+}
+
+/// Where the pooled estimate still misses the target after the first round of more particles
+/// (their number was read off a rough error from the first ones), the channel study runs a
+/// second round: from 100 first particles at `tau+` 10 and 30, seeds 1, 4 and 5, the first
+/// round left `tau+ = 30` at 5.4, 5.7 and 6.1 %; with the second, every point is within the
+/// 5 % target.
+#[test]
+fn a_channel_study_runs_a_second_round_where_the_first_misses_its_target() {
+    for seed in [1, 4, 5] {
+        let mut study = ChannelStudy {
+            tau_plus: vec![10.0, 30.0],
+            count: 100,
+            target_error: Some(0.05),
+            max_factor: 100.0,
+            ..ChannelStudy::default()
+        };
+        study.scene.seed = seed;
+        for p in study.run(|_| {}).unwrap() {
+            assert!(p.v_plus.error <= 0.05 * p.v_plus.value, "seed {seed}: {p:?}");
+        }
     }
 }
 
