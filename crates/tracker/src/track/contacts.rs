@@ -105,10 +105,27 @@ pub(super) fn wrap(mut x: DVec3, p: &Prepared<'_>) -> DVec3 {
     }
     for a in 0..3 {
         if !p.walled[a] {
-            x[a] = x[a].rem_euclid(p.size[a]);
+            x[a] = wrap_axis(x[a], p.size[a]);
         }
     }
     x
+}
+
+/// `x.rem_euclid(length)`, bit for bit, without the division where a step has left
+/// `[0, length)` by less than one length (every step but the first after an extreme state):
+/// `x - length` is exact there (Sterbenz), as `fmod` is, and `x + length` is what
+/// `rem_euclid` computes for `-length <= x < 0`. `fmod` took 4 % of a channel study's time.
+#[inline(always)]
+fn wrap_axis(x: f64, length: f64) -> f64 {
+    if (0.0..length).contains(&x) {
+        x
+    } else if (length..2.0 * length).contains(&x) {
+        x - length
+    } else if (-length..0.0).contains(&x) {
+        x + length
+    } else {
+        x.rem_euclid(length)
+    }
 }
 
 /// How a step with wall contacts ended.
@@ -257,6 +274,20 @@ pub(super) fn contacts<const EULER: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The periodic wrap is `rem_euclid` bit for bit: within a length of the box on either
+    /// side (where steps leave it) and far beyond, on a sweep of positions including the
+    /// ends of each range (only `x = -length`, which `rem_euclid` maps to `-0.0`, gives `+0.0`).
+    #[test]
+    fn the_periodic_wrap_is_rem_euclid_bit_for_bit() {
+        let length = 0.015_f64;
+        let mut xs = vec![0.0, -0.0, length, 2.0 * length, -1e-300, length * (1.0 - f64::EPSILON), 1e6, -1e6];
+        xs.extend((0..100_000).map(|i| (f64::from(i) / 25_000.0 - 2.0) * length * 1.000_37));
+        for x in xs {
+            assert_eq!(wrap_axis(x, length).to_bits(), x.rem_euclid(length).to_bits(), "x = {x:e}");
+        }
+        assert_eq!(wrap_axis(-length, length), 0.0);
+    }
 
     fn flight<const EULER: bool>(tau: f64, dt: f64) -> Flight<EULER> {
         let h = dt / tau;
