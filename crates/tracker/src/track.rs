@@ -262,6 +262,8 @@ pub(crate) struct Body {
     decay: f64,
     /// `tau (1 - exp(-dt / tau))`, s.
     relax: f64,
+    /// `tau (1 - exp(-dt / (2 tau)))`, s: the midpoint predictor's relaxation over half a step.
+    half_relax: f64,
     /// Brownian step: `x = sx a`, `v = cxv a + sv b` for standard normals `a, b`.
     brownian: [f64; 3],
     /// Thermal velocity variance per axis `kT/m`, m^2/s^2.
@@ -319,6 +321,7 @@ impl Body {
             settling: DVec3::ZERO,
             decay: 0.0,
             relax: 0.0,
+            half_relax: 0.0,
             brownian: [0.0; 3],
             thermal_variance: kt,
         };
@@ -337,6 +340,7 @@ impl Body {
         self.settling = self.gravity * tau;
         self.decay = (-h).exp();
         self.relax = tau * -(-h).exp_m1();
+        self.half_relax = tau * (1.0 - self.decay.sqrt());
         self.brownian = brownian_coefficients(h, tau, self.thermal_variance);
     }
 }
@@ -641,7 +645,7 @@ impl Flyer {
         let target = u0 + self.body.settling;
         // Over h = dt / 2: x + target h + (v - target) tau (1 - exp(-h / tau)).
         let h = 0.5 * p.dt;
-        let half = x + target * h + (v - target) * (self.body.tau * (1.0 - self.body.decay.sqrt()));
+        let half = x + target * h + (v - target) * self.body.half_relax;
         if inside(half, self.body.contact, p) {
             half
         } else {
