@@ -544,19 +544,20 @@ impl ChannelStudy {
             let all_walls = |r: &Run| r.deposition_velocity(&(0..r.walls.len()).collect::<Vec<_>>());
             let mut result = run(&scene, &injection)?;
             if let Some(target) = self.target_error {
-                let most = self.max_factor * count as f64;
-                let needed = particles_for(&all_walls(&result), count, target);
-                if needed > count && needed as f64 <= most {
-                    result = run_more(&scene, &Injection { count: needed, ..injection }, result)?;
-                    // Once more where the pooled estimate still misses the target: an error
-                    // that rests on rare events is itself rough from the first particles.
-                    let pooled = all_walls(&result);
-                    if pooled.error > target * pooled.value {
-                        let more = particles_for(&pooled, needed, target);
-                        if more > needed && more as f64 <= most {
-                            result = run_more(&scene, &Injection { count: more, ..injection }, result)?;
-                        }
+                // Two rounds: the second where the pooled estimate still misses the target (an
+                // error that rests on rare events is itself rough from the first particles).
+                let mut have = count;
+                for round in 0..2 {
+                    let e = all_walls(&result);
+                    if round > 0 && e.error <= target * e.value {
+                        break;
                     }
+                    let needed = particles_for(&e, have, target);
+                    if needed <= have || needed as f64 > self.max_factor * count as f64 {
+                        break;
+                    }
+                    result = run_more(&scene, &Injection { count: needed, ..injection }, result)?;
+                    have = needed;
                 }
             }
             let v = all_walls(&result);

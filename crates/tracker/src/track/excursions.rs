@@ -237,6 +237,12 @@ pub(crate) fn run_with_excursions<
     let mut scratch = vec![WallTally::default(); tally.len()];
 
     let mut flyer = Flyer::inject(p, id, TURB, BROWN);
+    // The particle's constants for coarse steps, once for all its excursions.
+    let mut coarse = p.coarse.as_deref().map(|c| Coarse {
+        p: c,
+        body: Body::new(c, flyer.body.aero.diameter),
+        factor: excursions.coarse_factor as usize,
+    });
     let mut inside = zone(p, excursions, &flyer) == Zone::Inside;
     for n in 0..flyer.end {
         let t0 = n as f64 * dt;
@@ -268,6 +274,7 @@ pub(crate) fn run_with_excursions<
                             p,
                             (excursions, sampling),
                             &flyer,
+                            coarse.as_mut(),
                             n + 1,
                             streams,
                             &mut sampler,
@@ -295,7 +302,8 @@ struct Branch {
     clock: usize,
 }
 
-/// One excursion from `start` (just inside the region, before step `next`), one of
+/// One excursion from `start` (just inside the region, before step `next`), with the
+/// particle's `coarse` steps where the scene has them, one of
 /// `sampling` per entry on average: its branches' weighted deposits, times `1 / sampling`,
 /// go to `stats`.
 ///
@@ -314,6 +322,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
     p: &Prepared<'_>,
     (excursions, sampling): (&Excursions, f64),
     start: &Flyer,
+    mut coarse: Option<&mut Coarse<'_, '_>>,
     next: usize,
     (seed, id, copies): (u64, u64, &mut u64),
     roulette: &mut Xoshiro256PlusPlus,
@@ -325,11 +334,6 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
     let (_, per_step) = normals_per_step(TURB, BROWN, EULER);
     // The branches' clock, in the scene's steps: a coarse step counts `factor` of them.
     let last = next + (excursions.max_duration / p.scene.dt).ceil() as usize;
-    let mut coarse = p.coarse.as_deref().map(|c| Coarse {
-        p: c,
-        body: Body::new(c, start.body.aero.diameter),
-        factor: (c.dt / p.dt).round() as usize,
-    });
     let mut stack = Vec::new();
     *copies += 1;
     let flyer = start.with_streams(Normals::from_rng(&mut branch_rng(seed, id, *copies)), next, per_step);
@@ -348,7 +352,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
         loop {
             // A coarse step where it cannot reach a wall and the turbulence is smooth enough
             // for it, the scene's step elsewhere.
-            let coarse_step = coarse.as_mut().filter(|c| c.allows(&flyer, gap));
+            let coarse_step = coarse.as_deref_mut().filter(|c| c.allows(&flyer, gap));
             let ticks = coarse_step.as_ref().map_or(1, |c| c.factor);
             let is_last = clock + ticks >= last;
             if is_last {
