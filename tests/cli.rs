@@ -175,6 +175,8 @@ fn user_errors_are_one_line() {
     user_error(&["impact", "--preset", "li1997-sio2", "--velocity", "1,0,-1", "--normal", "0,0,0"], "--normal");
     user_error(&["curve", "--preset", "li1997-sio2", "--plot", "/nonexistent-dir/x.svg"], "cannot draw");
     user_error(&["bench", "--n", "10000", "--filter", "no such kernel"], "matches no kernel");
+    user_error(&["bench", "--studies", "--scale", "0"], "--scale 0 is not in (0, 100]");
+    user_error(&["bench", "--studies", "--plot", "x.svg"], "not --studies");
 }
 
 #[test]
@@ -873,6 +875,31 @@ fn bench_integrators_reports_first_order_and_euler_instability() {
     let exp_large =
         rows.iter().find(|r| r["scheme"] == "exponential" && r["dt_over_tau"].as_f64().unwrap() > 2.0).unwrap();
     assert!(exp_large["relative_error"].as_f64().unwrap() < 0.1);
+}
+
+#[test]
+fn bench_studies_times_both_methods_of_every_case() {
+    // A few particles per run: what is checked is the report (each case's plain and reduced
+    // runs, their times to 5 % and the speed-up on the reduced row), not the figures, which
+    // `depo bench --studies` at its default scale gives in docs/performance-log.md.
+    let rows = ok_json(&["bench", "--studies", "--scale", "0.01", "--format", "json"]);
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 8);
+    for pair in rows.chunks(2) {
+        let (plain, reduced) = (&pair[0], &pair[1]);
+        assert_eq!(plain["case"], reduced["case"]);
+        assert_eq!(plain["method"], "plain");
+        assert!(reduced["method"].as_str().unwrap().starts_with("excursions"), "{reduced}");
+        assert!(plain["seconds"].as_f64().unwrap() > 0.0 && reduced["seconds"].as_f64().unwrap() > 0.0);
+        assert!(plain["speedup"].is_null(), "{plain}");
+        // Where both times exist the speed-up is their ratio.
+        if let (Some(p), Some(r)) = (plain["seconds_to_target"].as_f64(), reduced["seconds_to_target"].as_f64()) {
+            let speedup = reduced["speedup"].as_f64().unwrap();
+            assert!((speedup - p / r).abs() < 1e-9 * speedup, "{pair:?}");
+        }
+    }
+    assert_eq!(rows[7]["case"], "channel, tau+ = 3");
+    assert_eq!(rows[7]["method"], "excursions+sweeps");
 }
 
 #[test]

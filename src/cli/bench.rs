@@ -1,16 +1,20 @@
 //! `depo bench`: the wall-law kernels' throughput against a copy kernel moving the same bytes
 //! (timed interleaved), and each kernel's error against the f64 libm-pow kernel; with
-//! `--integrators`, the tracker's integrators' run time against error over the step size.
+//! `--integrators`, the tracker's integrators' run time against error over the step size; with
+//! `--studies`, the studies' variance reduction against plain tracking, run time against
+//! statistical error.
 
 use std::path::PathBuf;
 
 use clap::Args;
 use depo::bench::{error_against_reference, measure, standard_scenarios};
 use depo::tracker::convergence::{integrator_convergence, relaxation_time};
+use depo::tracker::efficiency::{compare_methods, MethodRun, TimeTo, MIN_EVENTS};
 use depo::tracker::Scheme;
 use serde::Serialize;
 
 use super::plot::{self, Series};
+use super::room::Measured;
 use super::{check_memory, print_csv_rows, progress_bar, Error, Format};
 
 #[derive(Args, Debug)]
@@ -36,6 +40,14 @@ pub struct BenchArgs {
     /// The tracker's integrators instead: run time against error over the step size.
     #[arg(long)]
     integrators: bool,
+    /// The studies' variance reduction against plain tracking instead: each run's time to a
+    /// 5 % standard error, timed side by side.
+    #[arg(long, conflicts_with = "integrators")]
+    studies: bool,
+    /// With --studies: particles per run as a multiple of the studies' first ones (1000 per
+    /// room size; 4000 plain and 1000 with excursions per tau+).
+    #[arg(long, default_value_t = 1.0)]
+    scale: f64,
 }
 
 /// One kernel's figures; the JSON keys are stable.
@@ -52,6 +64,9 @@ struct Row {
 pub fn run(args: &BenchArgs) -> Result<(), Error> {
     if args.integrators {
         return integrators(args);
+    }
+    if args.studies {
+        return studies(args);
     }
     if args.n < 1000 || args.threads == 0 || args.reps == 0 {
         return Err("--n must be at least 1000, --threads and --reps at least 1".into());
@@ -235,6 +250,102 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
             &series,
         )?;
         eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// The relative standard error the study comparison quotes times to: the studies' target.
+const STUDY_TARGET: f64 = 0.05;
+
+/// One method's run of one study case; the JSON keys are stable.
+#[derive(Serialize)]
+struct StudyRow {
+    case: String,
+    figure: &'static str,
+    method: &'static str,
+    estimate: Measured,
+    particles: usize,
+    seconds: f64,
+    relative_error: Option<f64>,
+    /// Seconds to a 5 % relative standard error.
+    seconds_to_target: Option<f64>,
+    /// Whether that time was projected from the other method's value (too few events).
+    projected: bool,
+    /// On the reduced method's row: plain tracking's time to 5 % over this one's.
+    speedup: Option<f64>,
+}
+
+fn studies(args: &BenchArgs) -> Result<(), Error> {
+    if args.plot.is_some() {
+        return Err("--plot draws the kernels and the integrators, not --studies".into());
+    }
+    if !(args.scale > 0.0 && args.scale <= 100.0) {
+        return Err(format!("--scale {} is not in (0, 100]", args.scale));
+    }
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build().map_err(|e| e.to_string())?;
+    let progress = progress_bar(4, "cases")?;
+    let cases = pool
+        .install(|| compare_methods(args.scale, |done| progress.set_position(done as u64)))
+        .map_err(|e| e.to_string())?;
+    progress.finish_and_clear();
+    let mut rows = Vec::new();
+    for case in &cases {
+        let [plain, reduced] = case.time_to(STUDY_TARGET);
+        let row = |method: &'static str, run: &MethodRun, time: Option<TimeTo>, speedup: Option<f64>| StudyRow {
+            case: case.name.clone(),
+            figure: case.figure,
+            method,
+            estimate: run.estimate.into(),
+            particles: run.particles,
+            seconds: run.seconds,
+            relative_error: run.relative_error(),
+            seconds_to_target: time.map(|t| t.seconds),
+            projected: time.is_some_and(|t| t.projected),
+            speedup,
+        };
+        rows.push(row("plain", &case.plain, plain, None));
+        rows.push(row(case.method, &case.reduced, reduced, case.speedup(STUDY_TARGET)));
+    }
+    match args.format {
+        Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
+        Format::Csv => print_csv_rows(&rows)?,
+        Format::Table => {
+            out!(
+                "The studies' variance reduction against plain tracking, each case run both ways in this run, {} threads;",
+                args.threads
+            );
+            out!("time to 5 %: the run's time times (relative error / 5 %)^2, the error falling as 1/sqrt(particles).");
+            out!(
+                "{:<20} {:<11} {:<25} {:>26} {:>9} {:>8} {:>7} {:>14} {:>8}",
+                "case",
+                "figure",
+                "method",
+                "value +- error [events]",
+                "particles",
+                "run (s)",
+                "error",
+                "to 5 % (s)",
+                "speed-up"
+            );
+            for r in &rows {
+                out!(
+                    "{:<20} {:<11} {:<25} {:>26} {:>9} {:>8.1} {:>7} {:>14} {:>8}",
+                    r.case,
+                    r.figure,
+                    r.method,
+                    r.estimate.cell(),
+                    r.particles,
+                    r.seconds,
+                    r.relative_error.map_or("-".to_string(), |e| format!("{:.1} %", 100.0 * e)),
+                    r.seconds_to_target
+                        .map_or("-".to_string(), |t| format!("{t:.3e}{}", if r.projected { "*" } else { "" })),
+                    r.speedup.map_or(String::new(), |s| format!("{s:.0}x"))
+                );
+            }
+            out!(
+                "* projected: with fewer than {MIN_EVENTS} deposits plain tracking's own error says little; its deposits as a Poisson count at the other method's value give it."
+            );
+        }
     }
     Ok(())
 }

@@ -33,6 +33,8 @@
 //!   unbiased estimate of the steady deposition rate from split copies of the particles that
 //!   enter a near-wall layer (in `track` as `excursions`).
 //! - [`convergence`]: run time against error of the integrators over the step size.
+//! - [`efficiency`]: run time against statistical error of the studies' variance reduction,
+//!   beside the plain tracking it replaces.
 //! - [`studies`]: the room and channel studies, runs beside their correlations.
 //! - [`distribution`]: size distributions (lognormal modes by number or mass, measured size
 //!   classes) through a room study: the mass deposited per surface, exhausted and airborne,
@@ -62,6 +64,7 @@ pub mod convergence;
 pub mod correlations;
 pub mod decay;
 pub mod distribution;
+pub mod efficiency;
 pub mod excursions;
 pub mod filtration;
 pub mod flow;
