@@ -177,6 +177,7 @@ fn user_errors_are_one_line() {
     user_error(&["bench", "--n", "10000", "--filter", "no such kernel"], "matches no kernel");
     user_error(&["bench", "--studies", "--scale", "0"], "--scale 0 is not in (0, 100]");
     user_error(&["bench", "--studies", "--plot", "x.svg"], "not --studies");
+    user_error(&["bench", "--studies", "--threads", "0"], "--threads must be at least 1");
 }
 
 #[test]
@@ -885,6 +886,7 @@ fn bench_studies_times_both_methods_of_every_case() {
     let rows = ok_json(&["bench", "--studies", "--scale", "0.01", "--format", "json"]);
     let rows = rows.as_array().unwrap();
     assert_eq!(rows.len(), 8);
+    let mut both = 0;
     for pair in rows.chunks(2) {
         let (plain, reduced) = (&pair[0], &pair[1]);
         assert_eq!(plain["case"], reduced["case"]);
@@ -896,10 +898,18 @@ fn bench_studies_times_both_methods_of_every_case() {
         if let (Some(p), Some(r)) = (plain["seconds_to_target"].as_f64(), reduced["seconds_to_target"].as_f64()) {
             let speedup = reduced["speedup"].as_f64().unwrap();
             assert!((speedup - p / r).abs() < 1e-9 * speedup, "{pair:?}");
+            both += 1;
         }
+        assert!(plain["fixed_seconds"] == 0.0 && reduced["fixed_seconds"].as_f64().unwrap() > 0.0, "{pair:?}");
     }
+    assert!(both >= 2, "the room's excursions deposit hundreds even at this scale: {rows:?}");
     assert_eq!(rows[7]["case"], "channel, tau+ = 3");
     assert_eq!(rows[7]["method"], "excursions+sweeps");
+    // The same rows as CSV, one line each under a header.
+    let csv = ok_text(&["bench", "--studies", "--scale", "0.01", "--format", "csv"]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 9, "{csv}");
+    assert!(lines[0].starts_with("case,figure,method,value,error,events,upper_bound,particles,seconds"), "{csv}");
 }
 
 #[test]

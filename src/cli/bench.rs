@@ -9,7 +9,8 @@ use std::path::PathBuf;
 use clap::Args;
 use depo::bench::{error_against_reference, measure, standard_scenarios};
 use depo::tracker::convergence::{integrator_convergence, relaxation_time};
-use depo::tracker::efficiency::{compare_methods, MethodRun, TimeTo, MIN_EVENTS};
+use depo::tracker::efficiency::{compare_methods, MethodRun, TimeTo, CASES, MIN_EVENTS};
+use depo::tracker::studies::TARGET_ERROR;
 use depo::tracker::Scheme;
 use serde::Serialize;
 
@@ -41,12 +42,12 @@ pub struct BenchArgs {
     #[arg(long)]
     integrators: bool,
     /// The studies' variance reduction against plain tracking instead: each run's time to a
-    /// 5 % standard error, timed side by side.
+    /// 5 % relative standard error, timed side by side.
     #[arg(long, conflicts_with = "integrators")]
     studies: bool,
     /// With --studies: particles per run as a multiple of the studies' first ones (1000 per
     /// room size; 4000 plain and 1000 with excursions per tau+).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, requires = "studies")]
     scale: f64,
 }
 
@@ -62,6 +63,9 @@ struct Row {
 }
 
 pub fn run(args: &BenchArgs) -> Result<(), Error> {
+    if args.threads == 0 {
+        return Err("--threads must be at least 1".into());
+    }
     if args.integrators {
         return integrators(args);
     }
@@ -254,20 +258,23 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
     Ok(())
 }
 
-/// The relative standard error the study comparison quotes times to: the studies' target.
-const STUDY_TARGET: f64 = 0.05;
-
 /// One method's run of one study case; the JSON keys are stable.
 #[derive(Serialize)]
 struct StudyRow {
     case: String,
     figure: &'static str,
     method: &'static str,
-    estimate: Measured,
+    value: f64,
+    error: f64,
+    events: usize,
+    /// With no event, a 95 % upper bound on the value.
+    upper_bound: Option<f64>,
     particles: usize,
     seconds: f64,
     relative_error: Option<f64>,
-    /// Seconds to a 5 % relative standard error.
+    /// The part of `seconds` fixed per run (the excursions' pilot calibration).
+    fixed_seconds: f64,
+    /// Seconds to the studies' relative standard error (5 %).
     seconds_to_target: Option<f64>,
     /// Whether that time was projected from the other method's value (too few events).
     projected: bool,
@@ -283,28 +290,32 @@ fn studies(args: &BenchArgs) -> Result<(), Error> {
         return Err(format!("--scale {} is not in (0, 100]", args.scale));
     }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build().map_err(|e| e.to_string())?;
-    let progress = progress_bar(4, "cases")?;
+    let progress = progress_bar(CASES, "cases")?;
     let cases = pool
         .install(|| compare_methods(args.scale, |done| progress.set_position(done as u64)))
         .map_err(|e| e.to_string())?;
     progress.finish_and_clear();
     let mut rows = Vec::new();
     for case in &cases {
-        let [plain, reduced] = case.time_to(STUDY_TARGET);
+        let [plain, reduced] = case.time_to(TARGET_ERROR);
         let row = |method: &'static str, run: &MethodRun, time: Option<TimeTo>, speedup: Option<f64>| StudyRow {
             case: case.name.clone(),
             figure: case.figure,
             method,
-            estimate: run.estimate.into(),
+            value: run.estimate.value,
+            error: run.estimate.error,
+            events: run.estimate.events,
+            upper_bound: (run.estimate.events == 0).then_some(run.estimate.upper_bound),
             particles: run.particles,
             seconds: run.seconds,
+            fixed_seconds: run.fixed_seconds,
             relative_error: run.relative_error(),
             seconds_to_target: time.map(|t| t.seconds),
             projected: time.is_some_and(|t| t.projected),
             speedup,
         };
         rows.push(row("plain", &case.plain, plain, None));
-        rows.push(row(case.method, &case.reduced, reduced, case.speedup(STUDY_TARGET)));
+        rows.push(row(case.method, &case.reduced, reduced, case.speedup(TARGET_ERROR)));
     }
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?),
@@ -314,7 +325,10 @@ fn studies(args: &BenchArgs) -> Result<(), Error> {
                 "The studies' variance reduction against plain tracking, each case run both ways in this run, {} threads;",
                 args.threads
             );
-            out!("time to 5 %: the run's time times (relative error / 5 %)^2, the error falling as 1/sqrt(particles).");
+            let target = format!("{} %", 100.0 * TARGET_ERROR);
+            out!(
+                "time to {target}: the run's pilot calibration plus the rest times (relative error / {target})^2, the error falling as 1/sqrt(particles)."
+            );
             out!(
                 "{:<20} {:<11} {:<25} {:>26} {:>9} {:>8} {:>7} {:>14} {:>8}",
                 "case",
@@ -324,7 +338,7 @@ fn studies(args: &BenchArgs) -> Result<(), Error> {
                 "particles",
                 "run (s)",
                 "error",
-                "to 5 % (s)",
+                format!("to {target} (s)"),
                 "speed-up"
             );
             for r in &rows {
@@ -333,7 +347,7 @@ fn studies(args: &BenchArgs) -> Result<(), Error> {
                     r.case,
                     r.figure,
                     r.method,
-                    r.estimate.cell(),
+                    Measured { value: r.value, error: r.error, events: r.events, upper_bound: r.upper_bound }.cell(),
                     r.particles,
                     r.seconds,
                     r.relative_error.map_or("-".to_string(), |e| format!("{:.1} %", 100.0 * e)),
@@ -343,7 +357,7 @@ fn studies(args: &BenchArgs) -> Result<(), Error> {
                 );
             }
             out!(
-                "* projected: with fewer than {MIN_EVENTS} deposits plain tracking's own error says little; its deposits as a Poisson count at the other method's value give it."
+                "* projected: with fewer than {MIN_EVENTS} deposits a run's own error says little; plain tracking's deposits as a Poisson count at the other method's value give it (- for a reduced run)."
             );
         }
     }

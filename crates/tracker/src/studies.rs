@@ -129,13 +129,17 @@ pub const CHANNEL_COARSE_FACTOR: u32 = 4;
 /// room's deposition.
 pub const RESOLVED_FROM: f64 = 1e-7;
 
+/// The relative standard error the default studies resolve their figures to
+/// ([`RoomStudy::target_error`], [`ChannelStudy::target_error`]).
+pub const TARGET_ERROR: f64 = 0.05;
+
 /// How many more particles than the first ones' errors say a study runs to reach its
 /// `target_error`: a margin for the errors' own spread.
 pub const TARGET_MARGIN: f64 = 1.15;
 
 /// `scene` with the studies' excursions, calibrated by a pilot of `pilot` particles of
 /// `injection` with factors up to `max`; `inner` and `max_duration` in wall units; `sweeps`
-/// and `coarse_factor` as [`Excursions`] has them.
+/// and `coarse_factor` as [`Excursions`] has them. Also the pilot's wall-clock time, s.
 #[allow(clippy::too_many_arguments)]
 fn with_excursions(
     mut scene: Scene,
@@ -146,7 +150,8 @@ fn with_excursions(
     max: u32,
     sweeps: Option<Sweeps>,
     coarse_factor: u32,
-) -> Result<Scene, SceneError> {
+) -> Result<(Scene, f64), SceneError> {
+    let start = std::time::Instant::now();
     let u_star = scene.flow.friction_velocity().unwrap_or(0.0);
     if u_star > 0.0 {
         let nu = scene.air.kinematic_viscosity();
@@ -160,7 +165,7 @@ fn with_excursions(
         let (_, rounds) = PILOT;
         scene.excursions = Some(excursions.calibrated(&scene, injection, pilot.max(1), rounds, max)?);
     }
-    Ok(scene)
+    Ok((scene, start.elapsed().as_secs_f64()))
 }
 
 impl Default for RoomStudy {
@@ -179,7 +184,7 @@ impl Default for RoomStudy {
             scene,
             diameters: vec![0.01e-6, 0.03e-6, 0.1e-6, 0.3e-6, 1e-6, 3e-6, 10e-6],
             count: 1000,
-            target_error: Some(0.05),
+            target_error: Some(TARGET_ERROR),
             max_count: 8000,
             density: 1000.0,
             transient: 0.1,
@@ -214,6 +219,9 @@ pub struct RoomPoint {
     /// Whether deposits were counted by near-wall excursions, and if so the share of their
     /// weight given up at their longest duration ([`Run::truncated_share`](crate::Run::truncated_share)).
     pub excursions: Option<f64>,
+    /// Wall-clock time of the excursions' pilot calibration, s (0 without excursions): a
+    /// cost fixed per run, which does not grow with the particles run.
+    pub calibration_seconds: f64,
     /// With ventilation (air-exchange rate `a > 0`), the steady indoor/outdoor concentration
     /// ratio of outdoor particles, `C_in / C_out = P a / (a + beta)` (the well-mixed room's
     /// mass balance with penetration `P`; with filters [`Filtration::indoor_outdoor`]), its
@@ -327,12 +335,13 @@ impl RoomStudy {
             let mut scene = self.scene.clone();
             scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
             scene.air_exchange += self.filtration.removal(d);
+            let mut calibration_seconds = 0.0;
             if self.excursions {
                 // Down to 0.05 wall units (75 um at u* = 1 cm/s), inside the Brownian sublayer
                 // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
                 // pilot has 500 particles, or a quarter of a smaller first run.
                 let pilot = (self.count / PILOT.0).max(self.count.min(500));
-                scene =
+                (scene, calibration_seconds) =
                     with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16, None, 1).map_err(for_diameters)?;
             }
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
@@ -375,6 +384,7 @@ impl RoomStudy {
                 particle_steps: result.particle_steps(),
                 particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
+                calibration_seconds,
                 tally: total(&result.tallies),
                 maps: result
                     .walls
@@ -481,7 +491,7 @@ impl Default for ChannelStudy {
             transient: 0.5,
             excursions_below: 10.0,
             excursion_count: 1000,
-            target_error: Some(0.05),
+            target_error: Some(TARGET_ERROR),
             max_factor: 8.0,
         }
     }
@@ -510,6 +520,9 @@ pub struct ChannelPoint {
     /// Whether deposits were counted by near-wall excursions, and if so the share of their
     /// weight given up at their longest duration ([`Run::truncated_share`](crate::Run::truncated_share)).
     pub excursions: Option<f64>,
+    /// Wall-clock time of the excursions' pilot calibration, s (0 without excursions): a
+    /// cost fixed per run, which does not grow with the particles run.
+    pub calibration_seconds: f64,
     /// Whether the excursions also caught strong sweeps before the layer
     /// ([`Excursions::sweeps`]; from [`CHANNEL_SWEEPS_FROM`]).
     pub sweeps: bool,
@@ -531,6 +544,7 @@ impl ChannelStudy {
             let injection = Injection::new(count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let mut scene = self.scene.clone();
             scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
+            let mut calibration_seconds = 0.0;
             if tp < self.excursions_below {
                 // Factors up to 4 (larger ones made the deep branches, which live long in
                 // the Brownian sublayer, too many: 3-5 times the run time for the same error).
@@ -539,7 +553,8 @@ impl ChannelStudy {
                 let (inner, longest) = (CHANNEL_INNERMOST_LEVEL, CHANNEL_LONGEST_EXCURSION);
                 // Without sweeps the branches hover in the viscous sublayer: coarse steps there.
                 let coarse = if sweeps.is_some() { 1 } else { CHANNEL_COARSE_FACTOR };
-                scene = with_excursions(scene, &injection, pilot, inner, longest, 4, sweeps, coarse)?;
+                (scene, calibration_seconds) =
+                    with_excursions(scene, &injection, pilot, inner, longest, 4, sweeps, coarse)?;
             }
             let all_walls = |r: &Run| r.deposition_velocity(&(0..r.walls.len()).collect::<Vec<_>>());
             let mut result = run(&scene, &injection)?;
@@ -577,6 +592,7 @@ impl ChannelStudy {
                 particle_steps: result.particle_steps(),
                 particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
+                calibration_seconds,
                 sweeps: scene.excursions.as_ref().is_some_and(|e| e.sweeps.is_some()),
                 tally: total(&result.tallies),
             });
