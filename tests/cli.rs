@@ -543,6 +543,17 @@ fn channel_reports_v_plus_beside_wood() {
     let ratio = point["ratio_to_wood"].as_f64().unwrap();
     assert!((0.5..2.0).contains(&ratio), "{point}");
     assert!((point["v_plus"]["value"].as_f64().unwrap() / point["wood"].as_f64().unwrap() - ratio).abs() < 1e-12);
+    // Against the band between Wood (4.5e-2 at tau+ = 10) and Papavergos & Hedley (3.5e-2):
+    // 1 within it, else the ratio to its nearer edge.
+    let v = point["v_plus"]["value"].as_f64().unwrap();
+    let band = if v > 4.5e-2 {
+        v / 4.5e-2
+    } else if v < 3.5e-2 {
+        v / 3.5e-2
+    } else {
+        1.0
+    };
+    assert!((point["band_factor"].as_f64().unwrap() - band).abs() < 1e-3 * band, "{point}");
     assert_eq!(report["re_tau"].as_f64().unwrap().round(), 150.0);
     // Wood and Papavergos & Hedley drawn on 100 tau+ values around the one run.
     let svg = std::fs::read_to_string(&figure).unwrap();
@@ -597,6 +608,29 @@ fn channel_names_the_points_that_caught_sweeps() {
     let row = |tau: &str| table.lines().find(|l| l.trim_start().starts_with(tau)).unwrap().to_string();
     assert!(row("3.000").contains("excursions+sweeps") && !row("1.000").contains("sweeps"), "{table}");
     assert!(table.contains("\"+sweeps\": strong sweeps"), "{table}");
+}
+
+/// A `V+` more than a factor 2 below the band between Wood and Papavergos & Hedley (here
+/// `tau+ = 0.3`, the diffusion-impaction shortfall) is marked in the table, with a note
+/// saying why; a point within a factor 2 is not.
+#[test]
+fn channel_marks_points_far_below_the_band() {
+    let dir = scratch("channel-band");
+    let scene = dir.join("band.toml");
+    std::fs::write(
+        &scene,
+        "[particles]\ntau_plus = [0.3, 10.0]\ncount = 200\nexcursion_count = 100\ntarget_error = 0\n",
+    )
+    .unwrap();
+    let report = ok_json(&["channel", scene.to_str().unwrap(), "--format", "json"]);
+    let band = report["points"][0]["band_factor"].as_f64().unwrap();
+    assert!(band < 0.5, "{report}");
+    let table = ok_text(&["channel", scene.to_str().unwrap()]);
+    let row = |tau: &str| table.lines().find(|l| l.trim_start().starts_with(tau)).unwrap().to_string();
+    assert!(row("0.300").contains(&format!("!{band:.2}")), "{table}");
+    assert!(!row("10.000").contains('!'), "{table}");
+    assert!(table.contains("! below the band by more than a factor 2"), "{table}");
+    assert!(!table.contains("! above the band"), "{table}");
 }
 
 #[test]

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::Args as ClapArgs;
-use depo::tracker::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
+use depo::tracker::correlations::{band_factor, diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
 use depo::tracker::measurements::SIPPOLA_NAZAROFF_2004;
 use depo::tracker::studies::CHANNEL_SWEEPS;
 use depo::tracker::{Air, Geometry};
@@ -39,6 +39,9 @@ struct Row {
     wood: f64,
     papavergos_hedley: f64,
     ratio_to_wood: f64,
+    /// `V+` against the band between Wood and Papavergos & Hedley: 1 within it, else the
+    /// factor to its nearer edge (`correlations::band_factor`); null with no deposit.
+    band_factor: Option<f64>,
     particle_steps: u64,
     /// Particles run at this `tau+`.
     particles: usize,
@@ -98,6 +101,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             wood: p.wood,
             papavergos_hedley: p.papavergos_hedley,
             ratio_to_wood: p.v_plus.value / p.wood,
+            band_factor: (p.v_plus.events > 0).then(|| band_factor(p.v_plus.value, p.wood, p.papavergos_hedley)),
             particle_steps: p.particle_steps,
             particles: p.particles,
             method: match (p.excursions, p.sweeps) {
@@ -137,6 +141,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 "wood",
                 "papavergos_hedley",
                 "ratio_to_wood",
+                "band_factor",
             ];
             print_csv(
                 &header,
@@ -151,6 +156,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                         r.wood.to_string(),
                         r.papavergos_hedley.to_string(),
                         r.ratio_to_wood.to_string(),
+                        r.band_factor.map_or(String::new(), |f| f.to_string()),
                     ]
                 }),
             )?;
@@ -171,7 +177,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 study.excursions_below
             );
             out!(
-                "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7} {:>9}  method",
+                "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7} {:>8} {:>9}  method",
                 "tau+",
                 "d (um)",
                 "Sc",
@@ -179,6 +185,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 "Wood",
                 "P&H",
                 "ratio",
+                "band",
                 "particles"
             );
             for r in &rows {
@@ -190,7 +197,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                     if r.v_plus.upper_bound.is_some() { "-".to_string() } else { format!("{:.2}", r.ratio_to_wood) };
                 let flag = if r.unresolved { "*" } else { " " };
                 out!(
-                    "{:>8} {:>9.3} {:>9.2e}  {:>28}{flag} {:>9.2e} {:>9.2e} {:>7} {:>9}  {method}",
+                    "{:>8} {:>9.3} {:>9.2e}  {:>28}{flag} {:>9.2e} {:>9.2e} {:>7} {:>8} {:>9}  {method}",
                     tau_plus_cell(r.tau_plus),
                     r.diameter_um,
                     r.schmidt,
@@ -198,10 +205,19 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                     r.wood,
                     r.papavergos_hedley,
                     ratio,
+                    band_cell(r.band_factor),
                     r.particles
                 );
             }
-            out!("ratio = depo / Wood. {ERROR_NOTE}");
+            out!("ratio = depo / Wood. band: within the band between Wood and P&H, or the factor to its nearer edge. {ERROR_NOTE}");
+            if rows.iter().any(|r| r.band_factor.is_some_and(|f| f < 0.5)) {
+                out!(
+                    "! below the band by more than a factor 2: in the diffusion-impaction regime (tau+ about 0.3-3) the near-wall model deposits too little, as continuous random walks are known to (docs/validation.md: by how much, and what was tried)."
+                );
+            }
+            if rows.iter().any(|r| r.band_factor.is_some_and(|f| f > 2.0)) {
+                out!("! above the band by more than a factor 2.");
+            }
             if rows.iter().any(|r| r.method == "excursions+sweeps") {
                 out!(
                     "\"+sweeps\": strong sweeps (the fluid's wall-ward velocity above {} standard deviations) anywhere in the channel start excursions too, where inertia lets them carry particles to the wall.",
@@ -259,6 +275,16 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
         eprintln!("figure: {}", path.display());
     }
     Ok(())
+}
+
+/// The band column: `within`, or the factor to the band's nearer edge, marked `!` beyond a
+/// factor 2; `-` with no deposit.
+fn band_cell(factor: Option<f64>) -> String {
+    match factor {
+        None => "-".to_string(),
+        Some(1.0) => "within".to_string(),
+        Some(f) => format!("{}{f:.2}", if (0.5..=2.0).contains(&f) { "" } else { "!" }),
+    }
 }
 
 /// `tau+` for the table: three decimals from 0.01 up, two significant digits in exponent form

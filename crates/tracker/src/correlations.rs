@@ -103,6 +103,22 @@ pub fn papavergos_hedley(tau_plus: f64, schmidt: f64) -> f64 {
     }
 }
 
+/// How far `value` lies outside the band between two correlations `a` and `b` (say Wood's and
+/// Papavergos & Hedley's `V+` at one `tau+`): 1 within it, `value / min(a, b)` below it and
+/// `value / max(a, b)` above it. The two correlations were fitted to overlapping compilations
+/// of the same measurements, so their spread is a floor on how well any one point is known;
+/// a model within a factor 2 of the band (a result in `[0.5, 2]`) agrees with them.
+pub fn band_factor(value: f64, a: f64, b: f64) -> f64 {
+    let (low, high) = (a.min(b), a.max(b));
+    if value < low {
+        value / low
+    } else if value > high {
+        value / high
+    } else {
+        1.0
+    }
+}
+
 /// The particle diameter (m) of density `density` with dimensionless relaxation time `tau_plus`
 /// in a flow of friction velocity `u*` (slip included, found by bisection), or `None` when no
 /// diameter between 0.1 nm and 1 cm gives it (say, `tau+ = 10` at `u* = 1e-4 m/s` would need
@@ -148,6 +164,14 @@ pub fn settling_diffusion_flux(settling: f64, diffusivity: f64, t: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn band_factor_is_one_within_and_the_ratio_to_the_nearer_edge_outside() {
+        // tau+ = 1: Wood 4.5e-4, Papavergos & Hedley 3.5e-4.
+        assert_eq!(band_factor(4e-4, 4.5e-4, 3.5e-4), 1.0);
+        assert!((band_factor(7e-5, 4.5e-4, 3.5e-4) - 0.2).abs() < 1e-12);
+        assert!((band_factor(1.35e-3, 3.5e-4, 4.5e-4) - 3.0).abs() < 1e-12);
+    }
 
     #[test]
     fn lai_nazaroff_integral_matches_hand_values() {
