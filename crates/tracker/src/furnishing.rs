@@ -197,10 +197,15 @@ pub fn axis_distance(x: [f64; 3], axis: usize, length: f64, boxes: &[Furnishing]
         let along = if face.is_nan() { 0.0 } else { c - face };
         // Beside the box (within its extent along `axis`) the faces are edge-on: the nearer
         // face's edge, `along` 0.
-        let distance = (along * along + lateral).sqrt();
-        if distance < best {
-            best = distance;
-            slope = if distance > 0.0 { along / distance } else { 0.0 };
+        let squared = along * along + lateral;
+        // The square root only where this box may be the nearer (the margin covers the
+        // rounding of both squares, so the comparison below decides as it would for all).
+        if squared < best * best * (1.0 + 1e-12) {
+            let distance = squared.sqrt();
+            if distance < best {
+                best = distance;
+                slope = if distance > 0.0 { along / distance } else { 0.0 };
+            }
         }
     }
     (best, slope)

@@ -69,8 +69,17 @@ pub(super) fn furnished_fluid_velocity(
         // The tangential factors from the room's walls alone: the distance to the nearest
         // surface along an axis jumps where a box's shadow begins, and a factor that jumped
         // along another component's own axis would break the well-mixed condition there.
-        let tangential = |comp: &Component| comp.table.at(wall_distance(at[comp.axis], size[comp.axis]).0).tangential;
-        let g = tangential_products([tangential(&turb[0]), tangential(&turb[1]), tangential(&turb[2])]);
+        // Where the nearest surface is a room wall the node read above is the one wanted
+        // (the same distance in the same table): no second read.
+        let tangential = |a: usize| {
+            let room = wall_distance(at[turb[a].axis], size[turb[a].axis]).0;
+            if room == ds[a].0 {
+                nodes[a].tangential
+            } else {
+                turb[a].table.at(room).tangential
+            }
+        };
+        let g = tangential_products([tangential(0), tangential(1), tangential(2)]);
         for a in 0..3 {
             let sign = ds[a].1;
             match normals {
