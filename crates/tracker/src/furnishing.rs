@@ -176,39 +176,56 @@ pub fn free_volume(size: [f64; 3], boxes: &[Furnishing]) -> f64 {
 /// and each box's two faces across `axis`, at their Euclidean distance from `x` (module docs).
 /// In front of a face (`x`'s projection within its rectangle) that is the distance along the
 /// axis; beyond the rectangle's edges it grows smoothly, so that the profile is continuous
-/// across the edge of the box's shadow.
+/// across the edge of the box's shadow. [`nearest_surfaces`] gives all three axes at once.
 #[inline]
 #[must_use]
 pub fn axis_distance(x: [f64; 3], axis: usize, length: f64, boxes: &[Furnishing]) -> (f64, f64) {
-    let c = x[axis];
-    let (mut best, mut slope) = if c <= length - c { (c, 1.0) } else { (length - c, -1.0) };
-    let (b, d) = ((axis + 1) % 3, (axis + 2) % 3);
-    let outside = |k: &Furnishing, a: usize| (k.low[a] - x[a]).max(x[a] - k.high[a]).max(0.0);
-    for k in boxes {
-        let lateral = outside(k, b).powi(2) + outside(k, d).powi(2);
-        // The nearer of its two faces across `axis` (the box lies between them).
-        let face = if c <= k.low[axis] {
-            k.low[axis]
-        } else if c >= k.high[axis] {
-            k.high[axis]
+    nearest_surfaces(x, [length; 3], boxes)[axis]
+}
+
+/// [`axis_distance`] along each of the three axes of a room of `size` (m), in one pass over
+/// the boxes: a box's offsets from `x` along each axis are shared by the three.
+#[inline]
+#[must_use]
+pub fn nearest_surfaces(x: [f64; 3], size: [f64; 3], boxes: &[Furnishing]) -> [(f64, f64); 3] {
+    let mut nearest = std::array::from_fn(|a| {
+        let c = x[a];
+        if c <= size[a] - c {
+            (c, 1.0)
         } else {
-            f64::NAN
-        };
-        let along = if face.is_nan() { 0.0 } else { c - face };
-        // Beside the box (within its extent along `axis`) the faces are edge-on: the nearer
-        // face's edge, `along` 0.
-        let squared = along * along + lateral;
-        // The square root only where this box may be the nearer (the margin covers the
-        // rounding of both squares, so the comparison below decides as it would for all).
-        if squared < best * best * (1.0 + 1e-12) {
-            let distance = squared.sqrt();
-            if distance < best {
-                best = distance;
-                slope = if distance > 0.0 { along / distance } else { 0.0 };
+            (size[a] - c, -1.0)
+        }
+    });
+    for k in boxes {
+        // How far `x` lies beyond the box along each axis, signed (negative below it, positive
+        // above it, 0 within its extent): along its own axis the offset from the nearer face
+        // across it (beside the box, within its extent, the faces are edge-on: the nearer
+        // face's edge, offset 0), across the other two the lateral offsets from the face.
+        let along: [f64; 3] = std::array::from_fn(|a| {
+            if x[a] <= k.low[a] {
+                x[a] - k.low[a]
+            } else if x[a] >= k.high[a] {
+                x[a] - k.high[a]
+            } else {
+                0.0
+            }
+        });
+        let squares = along.map(|o| o * o);
+        for (a, (best, slope)) in nearest.iter_mut().enumerate() {
+            let lateral = squares[(a + 1) % 3] + squares[(a + 2) % 3];
+            let squared = squares[a] + lateral;
+            // The square root only where this box may be the nearer (the margin covers the
+            // rounding of both squares, so the comparison below decides as it would for all).
+            if squared < *best * *best * (1.0 + 1e-12) {
+                let distance = squared.sqrt();
+                if distance < *best {
+                    *best = distance;
+                    *slope = if distance > 0.0 { along[a] / distance } else { 0.0 };
+                }
             }
         }
     }
-    (best, slope)
+    nearest
 }
 
 #[cfg(test)]

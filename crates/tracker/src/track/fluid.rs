@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use crate::flow::{tangential_products, Component, FlowField, Node, Table};
-use crate::furnishing::{axis_distance, Furnishing};
+use crate::furnishing::{nearest_surfaces, Furnishing};
 use crate::intermittency::Intermittent;
 
 use super::wall_distance;
@@ -43,7 +43,7 @@ pub(super) fn stress_part(coupling: &Table, size: [f64; 3], x: DVec3, zeta_norma
 
 /// The fluid velocity seen at `x` in a furnished room (mean plus `sigma zeta`), each
 /// component's profile taken at its distance to the nearest surface along its axis, room
-/// wall or furnishing face ([`axis_distance`]); with `normals`, `zeta` is then taken one
+/// wall or furnishing face ([`nearest_surfaces`]); with `normals`, `zeta` is then taken one
 /// exact Ornstein-Uhlenbeck step there ([`langevin_step`]), with the drift's sign that of
 /// the change of that distance along the axis. The components along a surface are damped
 /// by the room's walls only (see the comment below): a box's faces shape the component
@@ -63,8 +63,8 @@ pub(super) fn furnished_fluid_velocity(
     }
     if let Some(turb) = &field.turbulence {
         let at = x.to_array();
-        let distance = |comp: &Component| axis_distance(at, comp.axis, size[comp.axis], boxes);
-        let ds = [distance(&turb[0]), distance(&turb[1]), distance(&turb[2])];
+        let nearest = nearest_surfaces(at, size, boxes);
+        let ds = [nearest[turb[0].axis], nearest[turb[1].axis], nearest[turb[2].axis]];
         let nodes = [turb[0].table.at(ds[0].0), turb[1].table.at(ds[1].0), turb[2].table.at(ds[2].0)];
         // The tangential factors from the room's walls alone: the distance to the nearest
         // surface along an axis jumps where a box's shadow begins, and a factor that jumped
