@@ -110,12 +110,13 @@ pub fn papavergos_hedley(tau_plus: f64, schmidt: f64) -> f64 {
 /// a model within a factor 2 of the band (a result in `[0.5, 2]`) agrees with them.
 pub fn band_factor(value: f64, a: f64, b: f64) -> f64 {
     let (low, high) = (a.min(b), a.max(b));
-    if value < low {
-        value / low
-    } else if value > high {
-        value / high
-    } else {
+    if value >= low && value <= high {
         1.0
+    } else if value < low {
+        value / low
+    } else {
+        // Above the band, or NaN (which passes through).
+        value / high
     }
 }
 
@@ -171,6 +172,9 @@ mod tests {
         assert_eq!(band_factor(4e-4, 4.5e-4, 3.5e-4), 1.0);
         assert!((band_factor(7e-5, 4.5e-4, 3.5e-4) - 0.2).abs() < 1e-12);
         assert!((band_factor(1.35e-3, 3.5e-4, 4.5e-4) - 3.0).abs() < 1e-12);
+        // On an edge, within; a NaN is not reported within.
+        assert_eq!(band_factor(3.5e-4, 4.5e-4, 3.5e-4), 1.0);
+        assert!(band_factor(f64::NAN, 4.5e-4, 3.5e-4).is_nan());
     }
 
     #[test]

@@ -214,9 +214,9 @@ pub fn nearest_surfaces(x: [f64; 3], size: [f64; 3], boxes: &[Furnishing]) -> [(
         for (a, (best, slope)) in nearest.iter_mut().enumerate() {
             let lateral = squares[(a + 1) % 3] + squares[(a + 2) % 3];
             let squared = squares[a] + lateral;
-            // The square root only where this box may be the nearer (the margin covers the
-            // rounding of both squares, so the comparison below decides as it would for all).
-            if squared < *best * *best * (1.0 + 1e-12) {
+            // The square root only where this box may be the nearer: a rounded root below
+            // `best` needs an exact one below it, so `squared` at most `best * best` rounded.
+            if squared <= *best * *best {
                 let distance = squared.sqrt();
                 if distance < *best {
                     *best = distance;
@@ -287,6 +287,23 @@ mod tests {
         assert!((d - 0.1).abs() < 1e-12 && sign == -1.0);
         // Without boxes: the nearer wall.
         assert_eq!(axis_distance([0.9, 1.2, 0.72], 0, 4.0, &[]), (0.9, 1.0));
+    }
+
+    #[test]
+    fn nearest_surfaces_are_each_axis_distance_with_its_own_length() {
+        let size = [4.0, 3.0, 2.5];
+        let boxes = [table(), Furnishing::new([3.0, 0.5, 0.0 + 1e-3], [3.9, 2.5, 2.0])];
+        // In front of, beside, on a face, on an edge, and nearer the far walls of each axis.
+        for x in
+            [[1.5, 1.2, 0.8], [0.5, 2.9, 2.4], [1.0, 1.2, 0.72], [2.0, 1.5, 0.75], [3.95, 2.7, 1.0], [2.5, 2.6, 2.2]]
+        {
+            let all = nearest_surfaces(x, size, &boxes);
+            for (a, nearest) in all.iter().enumerate() {
+                assert_eq!(*nearest, axis_distance(x, a, size[a], &boxes), "{x:?} axis {a}");
+            }
+        }
+        // Far from the boxes, along y: the upper wall 0.3 m away, so the slope is -1.
+        assert_eq!(nearest_surfaces([0.2, 2.7, 2.4], size, &boxes)[1], (3.0 - 2.7, -1.0));
     }
 
     #[test]
