@@ -72,8 +72,8 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
     if args.studies {
         return studies(args);
     }
-    if args.n < 1000 || args.threads == 0 || args.reps == 0 {
-        return Err("--n must be at least 1000, --threads and --reps at least 1".into());
+    if args.n < 1000 || args.reps == 0 {
+        return Err("--n must be at least 1000, --reps at least 1".into());
     }
     // Two copies (pristine and working) of velocity, spin, radius, normals and outcome in f64.
     check_memory(&format!("--n {}", args.n), args.n as u64, 2 * 81)?;
