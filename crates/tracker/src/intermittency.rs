@@ -41,11 +41,20 @@
 //! a particle starts from the Gaussian, which relaxes to the t within a few `T_L`, inside
 //! the transient the studies leave out.
 //!
+//! What is stepped along a particle's path is a choice ([`SeenVelocity`]): the normalised
+//! `zeta`, as above, or the fluid velocity `u' = sigma zeta` itself, whose drift for a fluid
+//! element is Thomson's `sigma (A + sigma' zeta^2)`. The two are one model for tracers; for a
+//! particle that outruns its fluid, the normalised form shrinks the fluid velocity seen with
+//! `sigma` as the particle moves, the fluid form lets it change over the Lagrangian time only.
+//! In the channel the fluid form deposits 2-10 times more at `tau+` 0.3-3, within a factor
+//! of 2 of the band of the correlations there (docs/validation.md).
+//!
 //! Only the wall-normal component is intermittent: it alone carries particles to the wall.
 //! The Student-t is this model's choice of family: the heavy-tailed distribution fixed by the
 //! variance and flatness alone, with no further constant.
 
 use crate::flow::{lagrangian_time, profile_at, wall_normal_rms};
+use crate::scene::SeenVelocity;
 
 /// Flatness of the wall-normal velocity, `F(v)`, against `y+`: Moser, Kim & Mansour (1999),
 /// channel at `Re_tau = 178.12`, the half-channel profile `chan180.flat` (wall to centre).
@@ -174,14 +183,25 @@ pub(crate) struct Intermittent {
     inv_dy: f64,
     /// The distance of node 0, m.
     y0: f64,
+    /// Whether the step carries the fluid velocity rather than the normalised one
+    /// ([`SeenVelocity::Fluid`]): it then adds the path term of [`Self::step`], and the
+    /// tracker renormalises `zeta` to `sigma` where the particle moves ([`Self::sigma`]).
+    pub(crate) fluid_form: bool,
 }
 
 impl Intermittent {
     /// For a channel of half-height `half` (m), friction velocity `u*` (m/s) and kinematic
-    /// viscosity `nu` (m^2/s), and a step `dt` (s); `drift = false` drops the well-mixed
-    /// drift (for comparison only).
+    /// viscosity `nu` (m^2/s), and a step `dt` (s), stepping what `form` names; `drift =
+    /// false` drops the well-mixed drift (for comparison only).
     #[must_use]
-    pub fn channel(half: f64, friction_velocity: f64, viscosity: f64, dt: f64, drift: bool) -> Self {
+    pub fn channel(
+        half: f64,
+        friction_velocity: f64,
+        viscosity: f64,
+        dt: f64,
+        drift: bool,
+        form: SeenVelocity,
+    ) -> Self {
         let plus = friction_velocity / viscosity; // wall units per metre
         let time = viscosity / (friction_velocity * friction_velocity); // s per wall time unit
         let half_plus = half * plus;
@@ -210,7 +230,7 @@ impl Intermittent {
                 }
             })
             .collect();
-        Self { nodes, inv_dy: plus / spacing, y0: y0 / plus }
+        Self { nodes, inv_dy: plus / spacing, y0: y0 / plus, fluid_form: form == SeenVelocity::Fluid }
     }
 
     fn node(&self, distance: f64) -> &Node {
@@ -223,6 +243,13 @@ impl Intermittent {
     /// `normal`: the Gaussian model's exact step for frozen coefficients, `zeta decay + A T_L
     /// (1 - decay) + sqrt(S (1 - decay^2)) normal`, with the spread `S` and the drift `A` at
     /// the step's start.
+    ///
+    /// With [`SeenVelocity::Fluid`] the step carries the fluid velocity `u' = sigma zeta`
+    /// rather than `zeta`: `zeta` here is `u' / sigma(distance)`, and the step adds the part of
+    /// Thomson's (1987) drift for `u'` that the normalised form leaves to the path,
+    /// `sigma' zeta^2` (for a fluid element `d(sigma zeta) = sigma d zeta + zeta sigma' dy`,
+    /// `dy = sigma zeta dt`); the caller then divides by `sigma` where the particle has moved
+    /// ([`Self::sigma`]). For a tracer the two cancel to first order, and the two forms agree.
     #[inline]
     #[must_use]
     pub fn step(&self, distance: f64, sign: f64, zeta: f64, normal: f64) -> f64 {
@@ -232,7 +259,24 @@ impl Intermittent {
         let spread = (n.nu_m2 + z2) * n.inv_nu_m1;
         let shape = n.d_ln_k - 0.5 * q.ln() + 0.5 * z2 / (n.inv_nu_m1 * n.nu_m2 * n.nu_m2 * q);
         let drift = spread * (n.slope + n.sigma * n.dnu * shape);
-        zeta * n.decay + sign * drift * n.drift_time + spread.sqrt() * n.noise * normal
+        let path = if self.fluid_form {
+            // Outward `w = sign zeta` grows as `dw/dt = sigma' w^2`, over the step's drift time
+            // `r / sigma'`: exact (`w / (1 + r |w|)`) for a wall-ward `w`, bounded by `2 w`
+            // for an outward one, Euler's `r w^2` for small `r |w|`.
+            let w = sign * zeta;
+            let r = n.slope * n.drift_time;
+            sign * (r * w * w / (1.0 + r * w.abs()))
+        } else {
+            0.0
+        };
+        zeta * n.decay + sign * drift * n.drift_time + path + spread.sqrt() * n.noise * normal
+    }
+
+    /// `sigma` at `distance` (m), m/s, as the step reads it.
+    #[inline]
+    #[must_use]
+    pub(crate) fn sigma(&self, distance: f64) -> f64 {
+        self.node(distance).sigma
     }
 
     /// The well-mixed drift `A` away from the wall at `distance` for `zeta` (for tests).
@@ -267,7 +311,7 @@ mod tests {
         // A = sigma' (nu - 2 + zeta^2) / (nu - 1): sigma', the Gaussian model's drift, at
         // zeta = +-1, and less or more than it for weaker or stronger fluctuations. Worked in
         // wall units (u* = 1 m/s, nu_air = 1 m^2/s), sigma' by central differences.
-        let model = Intermittent::channel(300.0, 1.0, 1.0, 0.2, true);
+        let model = Intermittent::channel(300.0, 1.0, 1.0, 0.2, true, SeenVelocity::Normalised);
         let y = 250.01; // a node: 0.01 + 0.02 * 12500
         let h = 1e-4;
         let slope = (wall_normal_rms(y + h) - wall_normal_rms(y - h)) / (2.0 * h);
@@ -281,11 +325,37 @@ mod tests {
     }
 
     #[test]
+    fn the_fluid_form_adds_thomsons_path_term_worked_by_hand() {
+        // At the node y+ = 5.01 in wall units (u* = 1 m/s, nu_air = 1 m^2/s), dt = 0.2: the
+        // fluid form's step less the normalised one is sign r w^2 / (1 + r |w|), w = sign zeta,
+        // r = sigma' T_L (1 - exp(-dt / T_L)), T_L+ = 7.122 + 0.5731 y+ - 0.00129 y+^2 and
+        // sigma' by central differences of the fit. A wall-ward w of -2 shrinks to
+        // w / (1 + r |w|) over the path term alone; an outward one grows by less than w.
+        let normalised = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true, SeenVelocity::Normalised);
+        let fluid = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true, SeenVelocity::Fluid);
+        let y: f64 = 5.01;
+        let h = 0.005;
+        let slope = (wall_normal_rms(y + h) - wall_normal_rms(y - h)) / (2.0 * h);
+        let t = 7.122 + 0.5731 * y - 0.00129 * y * y;
+        let r = slope * t * (1.0 - (-0.2 / t).exp());
+        for (sign, zeta, normal) in [(1.0, -2.0, 0.0), (-1.0, 2.0, 0.7), (1.0, 3.0, -1.1), (-1.0, -0.5, 0.0)] {
+            let w: f64 = sign * zeta;
+            let by_hand = sign * r * w * w / (1.0 + r * w.abs());
+            let added = fluid.step(y, sign, zeta, normal) - normalised.step(y, sign, zeta, normal);
+            assert!((added - by_hand).abs() < 1e-3 * by_hand.abs(), "w {w}: {added} against {by_hand}");
+            if w < 0.0 {
+                assert!((w + sign * added - w / (1.0 + r * w.abs())).abs() < 1e-12);
+            }
+        }
+        assert!((fluid.sigma(y) - wall_normal_rms(y)).abs() < 1e-12);
+    }
+
+    #[test]
     fn drift_matches_the_formula_worked_by_hand() {
         // At y+ = 2 (between the DNS points 1.9279 and 2.6224), zeta = 2, in wall units:
         // A = sigma' S + sigma nu' S [D - ln(q)/2 + (nu - 1) zeta^2 / (2 (nu - 2)^2 q)], the
         // derivatives by central differences of the functions as written here.
-        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true);
+        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true, SeenVelocity::Normalised);
         let y = 0.01 + 0.02 * ((2.0f64 - 0.01) / 0.02).floor(); // the node below y+ = 2
         let nu_at = |y: f64| 4.0 + 6.0 / (19.467 + (17.443 - 19.467) * (y - 1.9279) / (2.6224 - 1.9279) - 3.0);
         let sigma_at = |y: f64| 0.0116 * y * y / (1.0 + 0.203 * y + 0.0014 * y.powf(2.421));
@@ -314,7 +384,7 @@ mod tests {
         // uniform in y times P(zeta; nu(y)): A P = d(sigma G)/dy, G = int_|zeta|^inf u P du.
         // Here G by quadrature of the t's density (independent of the code's closed form),
         // the y-derivative by central differences, in wall units (u* = 1 m/s, nu = 1 m^2/s).
-        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true);
+        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true, SeenVelocity::Normalised);
         let nu_at = |y: f64| 4.0 + 6.0 / (flatness(y) - 3.0);
         let density = |u: f64, nu: f64| {
             let k = (libm::lgamma(0.5 * (nu + 1.0)) - libm::lgamma(0.5 * nu)).exp()
@@ -348,7 +418,7 @@ mod tests {
         // The process at a fixed distance with the well-mixed drift removed (sign 0): its
         // stationary distribution is the unit-variance t with the flatness there (F = 27 at
         // y+ ~ 0.05 is beyond what a sample can show; at y+ = 15, F = 6.1).
-        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true);
+        let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true, SeenVelocity::Normalised);
         let y = 15.0;
         let (mut w, mut m2, mut m4) = (0.0, 0.0, 0.0);
         let mut rng = crate::noise::particle_rng(1, 0);
