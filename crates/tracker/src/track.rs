@@ -58,6 +58,8 @@
 //! `contacts` the wall contacts within a step, and `lanes` the same loop for four particles
 //! side by side.
 
+use std::sync::Arc;
+
 use depo_wall_model::energy::EnergyLoss;
 use glam::DVec3;
 use rand::{Rng, RngExt};
@@ -169,7 +171,7 @@ pub(crate) struct Prepared<'a> {
     pub boxes: &'a [Furnishing],
     /// The potential flow between the room's openings ([`crate::openings`]), added to the
     /// mean flow; `None` without openings (most scenes, which then take no such path).
-    pub mean_flow: Option<PotentialFlow>,
+    pub mean_flow: Option<Arc<PotentialFlow>>,
     /// The exhaust openings: a particle that reaches a wall within one leaves the room.
     pub exhausts: Vec<Opening>,
     pub size: [f64; 3],
@@ -233,7 +235,7 @@ impl<'a> Prepared<'a> {
             behaviours: scene.surface_behaviours(),
             boxes: &scene.furnishings,
             mean_flow: (!scene.openings.is_empty())
-                .then(|| PotentialFlow::new(size, &scene.openings, CELLS_ALONG_LONGEST)),
+                .then(|| PotentialFlow::shared(size, &scene.openings, &scene.furnishings, CELLS_ALONG_LONGEST)),
             exhausts: scene.openings.iter().filter(|o| o.kind == OpeningKind::Exhaust).copied().collect(),
             size,
             walled,
