@@ -751,7 +751,7 @@ impl Flyer {
             }
             return Step::Airborne;
         }
-        match contacts::<EULER>(p, body, flight, State { x, v, zeta: self.zeta }, tally) {
+        match contacts::<EULER>(p, body, flight, State { x, v, zeta: self.zeta }, at, tally) {
             AfterContacts::Airborne(s) => {
                 (self.x, self.v, self.zeta) = (s.x, s.v, s.zeta);
                 if TURB {

@@ -207,7 +207,7 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
                     bv: DVec3::new(bv[0][l], bv[1][l], bv[2][l]),
                 };
                 let state = State { x: flight.x0, v: flight.v0, zeta: [zeta[0][l], zeta[1][l], zeta[2][l]] };
-                match contacts::<false>(p, body, flight, state, tally) {
+                match contacts::<false>(p, body, flight, state, flight.x0, tally) {
                     AfterContacts::Airborne(s) => {
                         for a in 0..3 {
                             (x[a][l], v[a][l], zeta[a][l]) = (s.x[a], s.v[a], s.zeta[a]);
