@@ -666,11 +666,12 @@ impl Flyer {
     /// `to`: `zeta[2]` times `sigma(from) / sigma(to)`. Nothing otherwise.
     #[inline(always)]
     fn carry_fluid_velocity(zeta: &mut [f64; 3], field: &FlowField, size: [f64; 3], from: DVec3, to: DVec3) {
-        if let Some(model) = field.intermittent.as_ref().filter(|m| m.fluid_form) {
-            let before = model.sigma(wall_distance(from.z, size[2]).0);
-            // The table starts half a node from the wall, where sigma is positive.
-            let after = model.sigma(wall_distance(to.z, size[2]).0);
-            zeta[2] *= before / after;
+        let fluid_form = field.intermittent.as_ref().is_some_and(|m| m.fluid_form);
+        if let (true, Some(turb)) = (fluid_form, &field.turbulence) {
+            // The `sigma` the fluid velocity is read with (`intermittent_fluid_velocity`),
+            // positive from the table's first node on.
+            let sigma = |x: DVec3| turb[2].table.at(wall_distance(x.z, size[2]).0).sigma;
+            zeta[2] *= sigma(from) / sigma(to);
         }
     }
 
