@@ -217,7 +217,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 .collect();
             if below.iter().any(|t| (0.2..=5.0).contains(t)) {
                 out!(
-                    "! below the band by more than a factor 2: in the diffusion-impaction regime (tau+ about 0.3-3) the near-wall model deposits too little, as continuous random walks are known to (docs/validation.md: by how much, and what was tried; near_wall = \"intermittent\" with seen_velocity = \"fluid\" brings it within about a factor 2 of the band, with larger errors)."
+                    "! below the band by more than a factor 2: in the diffusion-impaction regime (tau+ about 0.3-3) the near-wall model deposits too little, as continuous random walks are known to (docs/validation.md: by how much, and what was tried)."
                 );
             } else if !below.is_empty() {
                 out!("! below the band by more than a factor 2.");

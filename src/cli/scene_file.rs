@@ -11,7 +11,7 @@ use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::openings;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
 use depo::tracker::{
-    Air, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, Scheme, SeenVelocity, WallBehaviour,
+    Air, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, Scheme, WallBehaviour,
 };
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
@@ -77,8 +77,6 @@ struct RunFile {
     drag: Option<String>,
     /// "gaussian" or "intermittent" (channels).
     near_wall: Option<String>,
-    /// "normalised" or "fluid" (with the intermittent model).
-    seen_velocity: Option<String>,
     /// "exponential" or "midpoint".
     scheme: Option<String>,
     excursions: Option<bool>,
@@ -299,8 +297,6 @@ fn apply_run_choices(path: &Path, scene: &mut Scene, run: &RunFile) -> Result<()
     set(&mut scene.scheme, named(path, "run.scheme", run.scheme.as_deref(), &schemes)?);
     let models = [("gaussian", NearWall::Gaussian), ("intermittent", NearWall::Intermittent)];
     set(&mut scene.near_wall, named(path, "run.near_wall", run.near_wall.as_deref(), &models)?);
-    let forms = [("normalised", SeenVelocity::Normalised), ("fluid", SeenVelocity::Fluid)];
-    set(&mut scene.seen_velocity, named(path, "run.seen_velocity", run.seen_velocity.as_deref(), &forms)?);
     Ok(())
 }
 

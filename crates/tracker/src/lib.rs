@@ -87,5 +87,5 @@ pub use furnishing::Furnishing;
 pub use geometry::{Geometry, Orientation, Wall};
 pub use openings::{Opening, OpeningKind};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Estimate, Run};
-pub use scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SeenVelocity, SizeDistribution, WallBehaviour};
+pub use scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 pub use track::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};

@@ -50,25 +50,6 @@ pub enum NearWall {
     Intermittent,
 }
 
-/// What the channel's intermittent near-wall model steps along a particle's path: the
-/// normalised fluctuation or the fluid velocity itself. For tracers the two are the same
-/// model (both keep them well mixed); they differ for a particle that does not move with its
-/// fluid.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum SeenVelocity {
-    /// The normalised fluctuation `zeta = u' / sigma(y)` (Iliopoulos & Hanratty 1999; Dehbi
-    /// 2008): the fluid velocity seen is `sigma zeta` at the particle's own position, so it
-    /// shrinks with `sigma` the moment a particle enters the quieter layer at the wall,
-    /// however fast the particle moves. The default.
-    #[default]
-    Normalised,
-    /// The fluid velocity `u'` itself, with Thomson's (1987) well-mixed drift for it, as a
-    /// fluid element's velocity evolves: what a particle carries into the layer at the wall
-    /// changes over the Lagrangian time, not with the particle's displacement. Needs
-    /// `NearWall::Intermittent` (see [`crate::intermittency`]).
-    Fluid,
-}
-
 /// How a step is integrated.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Scheme {
@@ -163,8 +144,6 @@ pub struct Scene {
     pub lift: bool,
     /// The near-wall statistics of a channel's wall-normal velocity.
     pub near_wall: NearWall,
-    /// What the intermittent near-wall model steps along a particle's path.
-    pub seen_velocity: SeenVelocity,
     /// One behaviour per wall, in the order of [`Geometry::walls`].
     pub walls: Vec<WallBehaviour>,
     /// The integrator.
@@ -216,7 +195,6 @@ impl Scene {
             drag: Drag::Stokes,
             lift: false,
             near_wall: NearWall::Gaussian,
-            seen_velocity: SeenVelocity::Normalised,
             walls,
             scheme: Scheme::Exponential,
             dt,
@@ -386,9 +364,6 @@ impl Scene {
         }
         if self.near_wall == NearWall::Intermittent && !matches!(self.flow, Flow::TurbulentChannel { .. }) {
             return Err(SceneError::new("near_wall", 1.0, "\"intermittent\" needs a turbulent channel flow"));
-        }
-        if self.seen_velocity == SeenVelocity::Fluid && self.near_wall != NearWall::Intermittent {
-            return Err(SceneError::new("seen_velocity", 1.0, "\"fluid\" needs the intermittent near-wall model"));
         }
         if injection.count == 0 {
             return Err(SceneError::new("particles.count", 0.0, "must be at least 1"));

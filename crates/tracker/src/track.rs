@@ -216,14 +216,8 @@ impl<'a> Prepared<'a> {
         let walled = scene.geometry.walled();
         let mut field = FlowField::new(&scene.flow, size, nu, dt, scene.drift_correction);
         if let (NearWall::Intermittent, Flow::TurbulentChannel { friction_velocity }) = (scene.near_wall, scene.flow) {
-            field.intermittent = Some(Intermittent::channel(
-                0.5 * size[2],
-                friction_velocity,
-                nu,
-                dt,
-                scene.drift_correction,
-                scene.seen_velocity,
-            ));
+            field.intermittent =
+                Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, dt, scene.drift_correction));
         }
         let midpoint = scene.scheme == Scheme::Midpoint && field.turbulence.is_some();
         Self {
@@ -661,20 +655,6 @@ impl Flyer {
         }
     }
 
-    /// With the intermittent model's [`SeenVelocity::Fluid`](crate::SeenVelocity::Fluid),
-    /// keeps the wall-normal fluid velocity `sigma zeta` as the particle goes from `from` to
-    /// `to`: `zeta[2]` times `sigma(from) / sigma(to)`. Nothing otherwise.
-    #[inline(always)]
-    fn carry_fluid_velocity(zeta: &mut [f64; 3], field: &FlowField, size: [f64; 3], from: DVec3, to: DVec3) {
-        let fluid_form = field.intermittent.as_ref().is_some_and(|m| m.fluid_form);
-        if let (true, Some(turb)) = (fluid_form, &field.turbulence) {
-            // The `sigma` the fluid velocity is read with (`intermittent_fluid_velocity`),
-            // positive from the table's first node on.
-            let sigma = |x: DVec3| turb[2].table.at(wall_distance(x.z, size[2]).0).sigma;
-            zeta[2] *= sigma(from) / sigma(to);
-        }
-    }
-
     /// Step `n` (from 0, in order) of the run: the fluid velocity seen, the drag relaxation,
     /// Brownian motion and the wall contacts within the step.
     #[inline(always)]
@@ -692,10 +672,6 @@ impl Flyer {
         // Where the flow is read: the start of the step, or half a step on (`Scheme::Midpoint`).
         let at = if TURB && p.midpoint { self.half_step_position(p, x, v) } else { x };
         let z = self.draws.step(n, per_step);
-        if TURB && p.midpoint {
-            // The fluid velocity seen at `x`, renormalised where the step reads the flow.
-            Self::carry_fluid_velocity(&mut self.zeta, field, p.size, x, at);
-        }
         let mut uf = if !p.boxes.is_empty() {
             let normals = TURB.then(|| [z[0], z[1], z[2]]);
             furnished_fluid_velocity(field, p.size, p.boxes, at, &mut self.zeta, normals)
@@ -744,9 +720,6 @@ impl Flyer {
         if inside(x1, body.contact, p) {
             self.x = wrap(x1, p);
             self.v = v1;
-            if TURB {
-                Self::carry_fluid_velocity(&mut self.zeta, field, p.size, at, self.x);
-            }
             if !(self.x.is_finite() && self.v.is_finite()) {
                 return Step::Left(Fate::Escaped, dt, self.x);
             }
@@ -755,9 +728,6 @@ impl Flyer {
         match contacts::<EULER>(p, body, flight, State { x, v, zeta: self.zeta }, at, tally) {
             AfterContacts::Airborne(s) => {
                 (self.x, self.v, self.zeta) = (s.x, s.v, s.zeta);
-                if TURB {
-                    Self::carry_fluid_velocity(&mut self.zeta, field, p.size, at, self.x);
-                }
                 Step::Airborne
             }
             AfterContacts::Left(fate, t, at) => Step::Left(fate, t, at),

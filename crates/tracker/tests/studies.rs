@@ -2,7 +2,7 @@
 //! excursions against plain tracking.
 
 use depo_tracker::studies::{ChannelStudy, RoomStudy, CHANNEL_COARSE_FACTOR, CHANNEL_INNERMOST_LEVEL, CHANNEL_SWEEPS};
-use depo_tracker::{run, Estimate, Excursions, Injection, NearWall, Scene, SeenVelocity, SizeDistribution};
+use depo_tracker::{run, Estimate, Excursions, Injection, NearWall, Scene, SizeDistribution};
 
 /// A `tau+` no particle can have at the channel's friction velocity is an error naming it, not
 /// a run of the largest particle under the wrong label.
@@ -122,28 +122,6 @@ fn sublayer_conductance_by_hand(r_plus: f64, schmidt: f64) -> f64 {
         })
         .sum();
     1.0 / resistance
-}
-
-/// Turbulent channel, diffusion-impaction regime: at `tau+ = 1` the intermittent model that
-/// steps the fluid velocity (Thomson's form) deposits within a factor of 2 of the band between
-/// Wood (1981) and Papavergos & Hedley (1984, `V+ = 3.5e-4 tau+^2` here), while the same model
-/// stepping the normalised velocity (and the Gaussian default) falls below half of it. The
-/// study's excursions, 1000 particles; the estimate rests on rare strong sweeps, hence the
-/// loose error bound.
-#[test]
-fn the_fluid_velocity_form_reaches_the_band_at_tau_plus_1() {
-    let band = [3.5e-4 / 2.0, wood_by_hand(1.0) * 2.0];
-    let v_plus = |seen: SeenVelocity| {
-        let mut study = ChannelStudy { tau_plus: vec![1.0], target_error: None, ..ChannelStudy::default() };
-        study.scene.near_wall = NearWall::Intermittent;
-        study.scene.seen_velocity = seen;
-        study.run(|_| {}).unwrap()[0].v_plus
-    };
-    let fluid = v_plus(SeenVelocity::Fluid);
-    assert!(fluid.value > band[0] && fluid.value < band[1], "fluid form: {fluid:?} against {band:?}");
-    assert!(fluid.error < 0.4 * fluid.value, "fluid form: {fluid:?}");
-    let normalised = v_plus(SeenVelocity::Normalised);
-    assert!(normalised.value < band[0], "normalised form: {normalised:?} against {band:?}");
 }
 
 /// Turbulent channel, diffusion regime: `V+` at `tau+ = 0.1`, where Brownian diffusion through
@@ -362,7 +340,7 @@ fn excursions_agree_with_plain_tracking_under_the_intermittent_model() {
     let nu = scene.air.kinematic_viscosity();
     let d = depo_tracker::correlations::diameter_for_tau_plus(3.0, 1000.0, &scene.air, 0.3).unwrap();
     let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
-    let plain = run(&scene, &Injection { count: 6000, ..injection }).unwrap();
+    let plain = run(&scene, &Injection { count: 9000, ..injection }).unwrap();
     let a = plain.deposition_velocity(&[0, 1]);
     assert!(a.events > 100, "plain {a:?}");
     let layer = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e5);

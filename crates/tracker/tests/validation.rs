@@ -4,7 +4,7 @@
 use depo_tracker::air::{Aerodynamics, Air, STANDARD_GRAVITY};
 use depo_tracker::correlations::settling_diffusion_flux;
 use depo_tracker::{
-    run, Drag, Fate, Flow, Geometry, Injection, NearWall, Scene, Scheme, SeenVelocity, SizeDistribution, WallBehaviour,
+    run, Drag, Fate, Flow, Geometry, Injection, NearWall, Scene, Scheme, SizeDistribution, WallBehaviour,
 };
 use depo_wall_model::{SizeDependence, WallLaw};
 
@@ -96,11 +96,6 @@ fn diffusion_onto_a_floor_follows_the_exact_solution() {
 /// uniform value, with the near-wall model `near_wall`, the well-mixed drift on or off, and the
 /// step `scheme`.
 fn channel_tracer_share(near_wall: NearWall, drift_correction: bool, scheme: Scheme) -> f64 {
-    channel_tracer_share_seeing(near_wall, SeenVelocity::Normalised, drift_correction, scheme)
-}
-
-/// [`channel_tracer_share`] with what the near-wall model steps along the path.
-fn channel_tracer_share_seeing(near_wall: NearWall, seen: SeenVelocity, drift_correction: bool, scheme: Scheme) -> f64 {
     let air = Air::standard();
     let u_star = 0.3;
     let unit = air.kinematic_viscosity() / u_star;
@@ -111,7 +106,6 @@ fn channel_tracer_share_seeing(near_wall: NearWall, seen: SeenVelocity, drift_co
     scene.gravity = [0.0; 3];
     scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
     scene.near_wall = near_wall;
-    scene.seen_velocity = seen;
     scene.drift_correction = drift_correction;
     scene.scheme = scheme;
     let tracers = run(&scene, &mono(10_000, 1e-9)).unwrap();
@@ -156,23 +150,6 @@ fn the_midpoint_step_keeps_channel_tracers_well_mixed_under_either_near_wall_mod
         let share = channel_tracer_share(near_wall, true, Scheme::Midpoint);
         assert!((share - 1.0).abs() < 0.15, "{near_wall:?}: {share} of uniform");
     }
-}
-
-/// With the intermittent model stepping the fluid velocity rather than the normalised one
-/// (Thomson's form), tracers stay well mixed too, under either step: the path term and the
-/// renormalisation where the particle moves cancel for them. Only the intermittent model has
-/// this form.
-#[test]
-fn the_fluid_velocity_form_keeps_channel_tracers_well_mixed() {
-    for scheme in [Scheme::Exponential, Scheme::Midpoint] {
-        let share = channel_tracer_share_seeing(NearWall::Intermittent, SeenVelocity::Fluid, true, scheme);
-        assert!((share - 1.0).abs() < 0.15, "{scheme:?}: {share} of uniform");
-    }
-    let mut scene = Scene::new(Geometry::Channel { length: 0.1, width: 0.05, height: 0.01 }, 1e-4, 1e-3);
-    scene.flow = Flow::TurbulentChannel { friction_velocity: 0.3 };
-    scene.seen_velocity = SeenVelocity::Fluid;
-    let err = run(&scene, &mono(10, 1e-6)).unwrap_err();
-    assert_eq!(err.field, "seen_velocity", "{err}");
 }
 
 fn busy_room() -> (Scene, Injection) {
