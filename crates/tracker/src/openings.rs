@@ -79,7 +79,9 @@
 //! gradients (Jacobi-preconditioned, to a residual of 1e-10 of the walls' outflows; a few
 //! hundred iterations and a fifth of a second on the default grid, once per study: the runs
 //! of a study share it, [`PotentialFlow::shared`]). Every cell of air keeps a zero
-//! divergence. A box's face lies up to half a cell from the shut faces, so within one cell
+//! divergence. Boxes that cut a part of the room off from the rest on this grid (a gap
+//! narrower than a cell counts as shut) so that the air coming in there could not leave,
+//! or a solve that does not converge, are errors naming the furnishings, not a flow. A box's face lies up to half a cell from the shut faces, so within one cell
 //! of a face the interpolated component heading into it is scaled down linearly to zero at
 //! the face itself: no mean flow carries particles into a box (a test: a plate under an
 //! exhaust, whose underside a flow that ignored it fed at a third of `Q / A`). A cell an
@@ -298,8 +300,16 @@ static LAST_FLOW: Mutex<Option<(FlowKey, Arc<PotentialFlow>)>> = Mutex::new(None
 impl PotentialFlow {
     /// As [`PotentialFlow::new`], reusing the last flow solved when it was for the same
     /// inputs.
-    #[must_use]
-    pub fn shared(size: [f64; 3], openings: &[Opening], boxes: &[Furnishing], longest: usize) -> Arc<Self> {
+    ///
+    /// # Errors
+    ///
+    /// As [`PotentialFlow::new`].
+    pub fn shared(
+        size: [f64; 3],
+        openings: &[Opening],
+        boxes: &[Furnishing],
+        longest: usize,
+    ) -> Result<Arc<Self>, SceneError> {
         let mut key: FlowKey = size.iter().map(|v| v.to_bits()).collect();
         key.push(longest as u64);
         for o in openings {
@@ -312,19 +322,25 @@ impl PotentialFlow {
         let mut last = LAST_FLOW.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         if let Some((k, flow)) = last.as_ref() {
             if *k == key {
-                return Arc::clone(flow);
+                return Ok(Arc::clone(flow));
             }
         }
-        let flow = Arc::new(Self::new(size, openings, boxes, longest));
+        let flow = Arc::new(Self::new(size, openings, boxes, longest)?);
         *last = Some((key, Arc::clone(&flow)));
-        flow
+        Ok(flow)
     }
 
     /// Solves the flow in a room of `size` (m) between `openings` (validated, balanced),
     /// round the furnishings `boxes`, on a grid of `longest` cells along the longest side (at
     /// least 2 along each).
-    #[must_use]
-    pub fn new(size: [f64; 3], openings: &[Opening], boxes: &[Furnishing], longest: usize) -> Self {
+    ///
+    /// # Errors
+    ///
+    /// An error naming `furnishings` where on this grid they cut a part of the room with
+    /// openings off from the rest so that its openings' flows do not balance (the air that
+    /// comes in there could not leave; a gap narrower than a cell between a box and a wall
+    /// counts as shut), or where the solve round them does not converge.
+    pub fn new(size: [f64; 3], openings: &[Opening], boxes: &[Furnishing], longest: usize) -> Result<Self, SceneError> {
         let longest_side = size.iter().copied().fold(0.0, f64::max);
         let cells = size.map(|l| ((l / longest_side * longest as f64).round() as usize).max(2));
         let h: [f64; 3] = std::array::from_fn(|a| size[a] / cells[a] as f64);
@@ -377,7 +393,12 @@ impl PotentialFlow {
         }
         let boxes: Vec<[[f64; 3]; 2]> = boxes.iter().map(|b| [b.low, b.high]).collect();
         let open = Connections::round(cells, h, &boxes, &rhs);
-        let phi = if boxes.is_empty() { solve_neumann(cells, h, rhs) } else { solve_masked(&open, h, &rhs) };
+        let phi = if boxes.is_empty() {
+            solve_neumann(cells, h, rhs)
+        } else {
+            solve_masked(&open, h, &rhs)
+                .map_err(|requirement| SceneError::new("furnishings", boxes.len() as f64, requirement))?
+        };
         for a in 0..3 {
             for k in 0..nz {
                 for j in 0..ny {
@@ -401,7 +422,7 @@ impl PotentialFlow {
             let outward = if o.kind == OpeningKind::Exhaust { o.face_velocity() } else { -o.face_velocity() };
             on_walls[o.wall].push((o.bounds(), if upper { outward } else { -outward }));
         }
-        Self { cells, h, faces, openings: on_walls, boxes }
+        Ok(Self { cells, h, faces, openings: on_walls, boxes })
     }
 
     /// Cells along x, y, z.
@@ -574,7 +595,13 @@ impl Connections {
 /// carrying flow: conjugate gradients on `-L` (symmetric, positive semi-definite) with its
 /// diagonal as the preconditioner, from zero, to a residual of `1e-10` of `rhs`'s. Cells with
 /// no open face (inside a box) keep `phi = 0`.
-fn solve_masked(open: &Connections, h: [f64; 3], rhs: &[f64]) -> Vec<f64> {
+///
+/// # Errors
+///
+/// What the furnishings must do, where a part of the grid the open faces connect has sources
+/// that do not sum to zero (no solution), or where the residual is not reached within
+/// [`MASKED_ITERATIONS`].
+fn solve_masked(open: &Connections, h: [f64; 3], rhs: &[f64]) -> Result<Vec<f64>, &'static str> {
     let cells = open.cells;
     let [nx, ny, nz] = cells;
     let n = nx * ny * nz;
@@ -595,6 +622,9 @@ fn solve_masked(open: &Connections, h: [f64; 3], rhs: &[f64]) -> Vec<f64> {
                 }
             }
         }
+    }
+    if !every_part_balances(&links, rhs) {
+        return Err("must not cut openings off from the rest of the room on the flow's grid: the air coming in there could not leave (leave a gap of at least a grid cell, 1/48 of the room's longest side, between a box and the walls)");
     }
     let apply = |x: &[f64], out: &mut [f64]| {
         for (index, l) in links.iter().enumerate() {
@@ -619,7 +649,7 @@ fn solve_masked(open: &Connections, h: [f64; 3], rhs: &[f64]) -> Vec<f64> {
     let mut ad = vec![0.0; n];
     for _ in 0..MASKED_ITERATIONS {
         if dot(&r, &r).sqrt() <= tolerance {
-            break;
+            return Ok(phi);
         }
         apply(&d, &mut ad);
         let step = rz / dot(&d, &ad);
@@ -635,7 +665,40 @@ fn solve_masked(open: &Connections, h: [f64; 3], rhs: &[f64]) -> Vec<f64> {
             *d = z + beta * *d;
         }
     }
-    phi
+    if dot(&r, &r).sqrt() <= tolerance {
+        Ok(phi)
+    } else {
+        Err("must leave a flow the solve can find: the flow round them did not converge")
+    }
+}
+
+/// Whether the sources `rhs` sum to zero, to `1e-9` of their total size, over every part of
+/// the grid that the `links` connect.
+fn every_part_balances(links: &[Vec<(usize, f64)>], rhs: &[f64]) -> bool {
+    let scale: f64 = rhs.iter().map(|v| v.abs()).sum();
+    let mut seen = vec![false; links.len()];
+    let mut stack = Vec::new();
+    for start in 0..links.len() {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut sum = 0.0;
+        while let Some(cell) = stack.pop() {
+            sum += rhs[cell];
+            for &(other, _) in &links[cell] {
+                if !seen[other] {
+                    seen[other] = true;
+                    stack.push(other);
+                }
+            }
+        }
+        if sum.abs() > 1e-9 * scale {
+            return false;
+        }
+    }
+    true
 }
 
 /// Index of the face normal to `axis` at the low side of `cell` in the face array of `axis`.
@@ -741,7 +804,7 @@ mod tests {
     #[test]
     fn divergence_vanishes_and_walls_carry_only_their_openings() {
         let openings = two_openings();
-        let flow = PotentialFlow::new(SIZE, &openings, &[], CELLS_ALONG_LONGEST);
+        let flow = PotentialFlow::new(SIZE, &openings, &[], CELLS_ALONG_LONGEST).unwrap();
         assert_eq!(flow.cells(), [48, 36, 30]);
         let q = openings[0].flow;
         // A cell's inflow is up to q / (its wall face): the scale of the divergence.
@@ -789,7 +852,7 @@ mod tests {
             Opening::supply(1, [30.0 * h, 18.0 * h], [6.0 * h, 2.0 * h], 0.01),
             Opening::exhaust(3, [24.0 * h, 15.0 * h], [8.0 * h, 6.0 * h], 0.03),
         ];
-        let flow = PotentialFlow::new(SIZE, &openings, &[], CELLS_ALONG_LONGEST);
+        let flow = PotentialFlow::new(SIZE, &openings, &[], CELLS_ALONG_LONGEST).unwrap();
         for o in &openings {
             let (axis, upper) = wall_axis(o.wall);
             let [b, c] = in_plane_axes(axis);
@@ -819,6 +882,40 @@ mod tests {
         }
     }
 
+    /// A partition from wall to wall between the supply and the exhaust (gaps of 1 cm, an
+    /// eighth of a grid cell) leaves no way out for the air that comes in: an error naming
+    /// the furnishings, not a silently wrong flow. With a gap of two cells at one side the
+    /// flow is found and goes through the gap.
+    #[test]
+    fn a_partition_that_shuts_the_supply_in_is_an_error() {
+        let q = 60.0 / 3600.0;
+        let openings =
+            vec![Opening::supply(1, [1.0, 1.5], [0.6, 0.6], q), Opening::exhaust(3, [1.5, 0.3], [0.5, 0.3], q)];
+        let shut = [Furnishing::new([2.0, 0.01, 0.01], [2.2, 2.99, 2.49])];
+        let err = PotentialFlow::new(SIZE, &openings, &shut, CELLS_ALONG_LONGEST).unwrap_err();
+        assert_eq!(err.field, "furnishings", "{err}");
+        let gap = [Furnishing::new([2.0, 0.01, 0.01], [2.2, 2.83, 2.49])];
+        let flow = PotentialFlow::new(SIZE, &openings, &gap, CELLS_ALONG_LONGEST).unwrap();
+        let scale = q / (flow.h[0] * flow.h[1] * flow.h[2]);
+        assert!(worst_divergence(&flow) < 1e-8 * scale);
+        // All the air crosses x = 2.1 through the gap: the faces there beyond y = 2.83.
+        let [_, ny, nz] = flow.cells();
+        let i = (2.1 / flow.h[0]).round() as usize;
+        let through = |gap: bool| -> f64 {
+            (0..nz)
+                .flat_map(|k| (0..ny).map(move |j| [i, j, k]))
+                .filter(|c| ((c[1] as f64 + 0.5) * flow.h[1] > 2.83) == gap)
+                .map(|c| flow.face_velocity(0, c) * flow.h[1] * flow.h[2])
+                .sum()
+        };
+        assert!(
+            (through(true) - q).abs() < 1e-9 * q && through(false).abs() < 1e-9 * q,
+            "{} {}",
+            through(true),
+            through(false)
+        );
+    }
+
     /// A shelf standing 0.1 m in front of the exhaust, and a thin table top under the
     /// supply: the flow goes round them. Every cell of air keeps a zero divergence, each
     /// opening its flow, and no air crosses a box: no face between cells whose centres a box
@@ -831,9 +928,9 @@ mod tests {
         let boxes =
             [Furnishing::new([3.5, 0.2, 0.3], [3.9, 2.8, 2.0]), Furnishing::new([1.0, 1.0, 0.7], [2.2, 1.8, 0.75])];
         let started = std::time::Instant::now();
-        let flow = PotentialFlow::new(SIZE, &openings, &boxes, CELLS_ALONG_LONGEST);
+        let flow = PotentialFlow::new(SIZE, &openings, &boxes, CELLS_ALONG_LONGEST).unwrap();
         let solve = started.elapsed();
-        let bare = PotentialFlow::new(SIZE, &openings, &[], CELLS_ALONG_LONGEST);
+        let bare = PotentialFlow::new(SIZE, &openings, &[], CELLS_ALONG_LONGEST).unwrap();
         let scale = q / (flow.h[0] * flow.h[1] * flow.h[2]);
         let worst = worst_divergence(&flow);
         assert!(worst < 1e-8 * scale, "{worst} against {scale} ({solve:?})");
@@ -867,7 +964,7 @@ mod tests {
         let q = 0.15;
         let openings =
             vec![Opening::supply(2, [1.5, 1.25], [3.0, 2.5], q), Opening::exhaust(3, [1.5, 1.25], [3.0, 2.5], q)];
-        let flow = PotentialFlow::new(SIZE, &openings, &[], 40);
+        let flow = PotentialFlow::new(SIZE, &openings, &[], 40).unwrap();
         let u = q / (3.0 * 2.5);
         for x in [[0.0, 0.0, 0.0], [0.01, 2.9, 1.0], [2.0, 1.5, 1.25], [3.99, 0.2, 2.49], [4.0, 3.0, 2.5]] {
             let v = flow.velocity(x);

@@ -89,7 +89,7 @@ pub fn run_more(scene: &Scene, injection: &Injection, mut previous: Run) -> Resu
 /// The scene validated and prepared for `injection`.
 fn prepare<'a>(scene: &'a Scene, injection: &'a Injection) -> Result<Prepared<'a>, SceneError> {
     scene.validate(injection)?;
-    let prepared = Prepared::new(scene, injection);
+    let prepared = Prepared::new(scene, injection)?;
     let (limit, message) = if scene.scheme == Scheme::Midpoint {
         (MAX_STEP_GRADIENT_MIDPOINT, "is too long for the turbulence: dt times the steepest gradient of a velocity fluctuation's rms must be at most 0.1 with the midpoint scheme")
     } else {

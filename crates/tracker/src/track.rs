@@ -73,7 +73,7 @@ use crate::geometry::Wall;
 use crate::intermittency::Intermittent;
 use crate::noise::{particle_rng, Normals};
 use crate::openings::{Opening, OpeningKind, PotentialFlow, CELLS_ALONG_LONGEST};
-use crate::scene::{Drag, Injection, NearWall, Scene, Scheme, SizeDistribution, WallBehaviour};
+use crate::scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 
 mod contacts;
 mod excursions;
@@ -197,20 +197,25 @@ pub(crate) struct Prepared<'a> {
 }
 
 impl<'a> Prepared<'a> {
-    pub fn new(scene: &'a Scene, injection: &'a Injection) -> Self {
-        let mut prepared = Self::stepping(scene, injection, scene.dt);
+    /// The scene prepared for `injection`.
+    ///
+    /// # Errors
+    ///
+    /// Where the mean flow between the openings cannot be solved ([`PotentialFlow::new`]).
+    pub fn new(scene: &'a Scene, injection: &'a Injection) -> Result<Self, SceneError> {
+        let mut prepared = Self::stepping(scene, injection, scene.dt)?;
         let factor = scene.excursions.as_ref().map_or(1, |e| e.coarse_factor);
         if factor > 1 && prepared.boxes.is_empty() && prepared.mean_flow.is_none() {
-            let mut coarse = Self::stepping(scene, injection, scene.dt * f64::from(factor));
+            let mut coarse = Self::stepping(scene, injection, scene.dt * f64::from(factor))?;
             // Second order in `dt |d sigma/dy|`, whatever the scene's scheme.
             coarse.midpoint = coarse.field.turbulence.is_some();
             prepared.coarse = Some(Box::new(coarse));
         }
-        prepared
+        Ok(prepared)
     }
 
     /// The scene prepared for steps of `dt`.
-    fn stepping(scene: &'a Scene, injection: &'a Injection, dt: f64) -> Self {
+    fn stepping(scene: &'a Scene, injection: &'a Injection, dt: f64) -> Result<Self, SceneError> {
         let size = scene.geometry.size();
         let nu = scene.air.kinematic_viscosity();
         let walled = scene.geometry.walled();
@@ -220,7 +225,7 @@ impl<'a> Prepared<'a> {
                 Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, dt, scene.drift_correction));
         }
         let midpoint = scene.scheme == Scheme::Midpoint && field.turbulence.is_some();
-        Self {
+        Ok(Self {
             scene,
             injection,
             field,
@@ -228,8 +233,11 @@ impl<'a> Prepared<'a> {
             surfaces: scene.surfaces(),
             behaviours: scene.surface_behaviours(),
             boxes: &scene.furnishings,
-            mean_flow: (!scene.openings.is_empty())
-                .then(|| PotentialFlow::shared(size, &scene.openings, &scene.furnishings, CELLS_ALONG_LONGEST)),
+            mean_flow: if scene.openings.is_empty() {
+                None
+            } else {
+                Some(PotentialFlow::shared(size, &scene.openings, &scene.furnishings, CELLS_ALONG_LONGEST)?)
+            },
             exhausts: scene.openings.iter().filter(|o| o.kind == OpeningKind::Exhaust).copied().collect(),
             size,
             walled,
@@ -241,7 +249,7 @@ impl<'a> Prepared<'a> {
             midpoint,
             dt,
             coarse: None,
-        }
+        })
     }
 }
 

@@ -505,7 +505,7 @@ mod tests {
             Some(Excursions { coarse_factor: 8, ..Excursions::in_wall_units(u_star, nu, 0.2, 3.0, 1e5) });
         let d = crate::correlations::diameter_for_tau_plus(0.3, 1000.0, &scene.air, u_star).unwrap();
         let injection = crate::Injection::new(1, crate::SizeDistribution::Monodisperse { diameter: d }, 1000.0);
-        let p = Prepared::new(&scene, &injection);
+        let p = Prepared::new(&scene, &injection).unwrap();
         let c = p.coarse.as_deref().expect("coarse steps prepared");
         assert!((c.dt / p.dt - 8.0).abs() < 1e-12);
         let coarse = Coarse { p: c, body: Body::new(c, d), factor: 8 };

@@ -570,7 +570,7 @@ mod tests {
     /// `run_lanes` must give each particle exactly what `run_particle` gives it alone: same
     /// records bit for bit, same wall contacts.
     fn lanes_match_one_at_a_time<const BROWN: bool, const TURB: bool>(scene: &Scene, injection: &Injection) -> usize {
-        let p = Prepared::new(scene, injection);
+        let p = Prepared::new(scene, injection).unwrap();
         let walls = p.walls.len();
         let (mut lane_tally, mut alone_tally) = (vec![WallTally::default(); walls], vec![WallTally::default(); walls]);
         let lanes = run_lanes::<BROWN, TURB>(&p, 0..injection.count, &mut lane_tally);
