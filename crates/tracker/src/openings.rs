@@ -81,7 +81,8 @@
 //! of a study share it, [`PotentialFlow::shared`]). Every cell of air keeps a zero
 //! divergence. Boxes that cut a part of the room off from the rest on this grid (a gap
 //! narrower than a cell counts as shut) so that the air coming in there could not leave,
-//! or a solve that does not converge, are errors naming the furnishings, not a flow. A box's face lies up to half a cell from the shut faces, so within one cell
+//! or a solve that does not converge, are errors naming the furnishings, not a flow; so is
+//! a box that covers an opening ([`validate_clearance`]). A box's face lies up to half a cell from the shut faces, so within one cell
 //! of a face the interpolated component heading into it is scaled down linearly to zero at
 //! the face itself: no mean flow carries particles into a box (a test: a plate under an
 //! exhaust, whose underside a flow that ignored it fed at a third of `Q / A`). A cell an
@@ -273,6 +274,39 @@ pub fn validate(openings: &[Opening], geometry: &Geometry) -> Result<(), SceneEr
     Ok(())
 }
 
+/// The mean flow's grid in a room of `size` (m) with `longest` cells along its longest side:
+/// cells along x, y, z (at least 2 each) and their size, m.
+fn grid(size: [f64; 3], longest: usize) -> ([usize; 3], [f64; 3]) {
+    let longest_side = size.iter().copied().fold(0.0, f64::max);
+    let cells = size.map(|l| ((l / longest_side * longest as f64).round() as usize).max(2));
+    (cells, std::array::from_fn(|a| size[a] / cells[a] as f64))
+}
+
+/// Checks that no furnishing covers an opening: a box whose extent overlaps an opening's
+/// rectangle must stand at least one cell of the mean flow's grid ([`CELLS_ALONG_LONGEST`])
+/// off that opening's wall, or the opening would blow into the box or draw from it. The
+/// error names `furnishings[k]` and gives the gap, m.
+pub fn validate_clearance(openings: &[Opening], boxes: &[Furnishing], size: [f64; 3]) -> Result<(), SceneError> {
+    let (_, h) = grid(size, CELLS_ALONG_LONGEST);
+    for (k, b) in boxes.iter().enumerate() {
+        for o in openings {
+            let (axis, upper) = wall_axis(o.wall);
+            let axes = in_plane_axes(axis);
+            let bounds = o.bounds();
+            let faces = (0..2).all(|i| b.low[axes[i]] < bounds[i][1] && b.high[axes[i]] > bounds[i][0]);
+            let gap = if upper { size[axis] - b.high[axis] } else { b.low[axis] };
+            if faces && gap < h[axis] {
+                return Err(SceneError {
+                    field: format!("furnishings[{k}]"),
+                    value: gap,
+                    requirement: "must not cover an opening: leave a cell of the mean flow's grid (1/48 of the room's longest side) between it and an opening it faces (this is the gap, m)",
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The potential flow between a room's openings on a staggered grid (module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PotentialFlow {
@@ -341,9 +375,7 @@ impl PotentialFlow {
     /// comes in there could not leave; a gap narrower than a cell between a box and a wall
     /// counts as shut), or where the solve round them does not converge.
     pub fn new(size: [f64; 3], openings: &[Opening], boxes: &[Furnishing], longest: usize) -> Result<Self, SceneError> {
-        let longest_side = size.iter().copied().fold(0.0, f64::max);
-        let cells = size.map(|l| ((l / longest_side * longest as f64).round() as usize).max(2));
-        let h: [f64; 3] = std::array::from_fn(|a| size[a] / cells[a] as f64);
+        let (cells, h) = grid(size, longest);
         let [nx, ny, nz] = cells;
         let cell_volume = h[0] * h[1] * h[2];
         let mut faces: [Vec<f64>; 3] = std::array::from_fn(|a| {
@@ -593,8 +625,9 @@ impl Connections {
 
 /// Solves `L phi = rhs` as [`solve_neumann`] does, with only the `open` faces between cells
 /// carrying flow: conjugate gradients on `-L` (symmetric, positive semi-definite) with its
-/// diagonal as the preconditioner, from zero, to a residual of `1e-10` of `rhs`'s. Cells with
-/// no open face (inside a box) keep `phi = 0`.
+/// diagonal as the preconditioner, from zero, to a residual of `1e-10` of `rhs`'s, after each
+/// connected part's sources are brought to a zero sum ([`balanced_parts`]). Cells with no
+/// open face (inside a box) keep `phi = 0`.
 ///
 /// # Errors
 ///
@@ -623,9 +656,9 @@ fn solve_masked(open: &Connections, h: [f64; 3], rhs: &[f64]) -> Result<Vec<f64>
             }
         }
     }
-    if !every_part_balances(&links, rhs) {
+    let Some(rhs) = balanced_parts(&links, rhs) else {
         return Err("must not cut openings off from the rest of the room on the flow's grid: the air coming in there could not leave (leave a gap of at least a grid cell, 1/48 of the room's longest side, between a box and the walls)");
-    }
+    };
     let apply = |x: &[f64], out: &mut [f64]| {
         for (index, l) in links.iter().enumerate() {
             out[index] = l.iter().map(|&(other, w)| w * (x[index] - x[other])).sum();
@@ -672,21 +705,26 @@ fn solve_masked(open: &Connections, h: [f64; 3], rhs: &[f64]) -> Result<Vec<f64>
     }
 }
 
-/// Whether the sources `rhs` sum to zero, to `1e-9` of their total size, over every part of
-/// the grid that the `links` connect.
-fn every_part_balances(links: &[Vec<(usize, f64)>], rhs: &[f64]) -> bool {
+/// The sources `rhs` with each part of the grid that the `links` connect brought to a zero sum
+/// (its mean taken off its cells: what the openings' flows may miss their balance by, up to
+/// [`FLOW_BALANCE`], a solution needs exactly); `None` where a part's sum is beyond `1e-9` of
+/// the sources' total size, a part that air comes into and cannot leave, or the reverse.
+fn balanced_parts(links: &[Vec<(usize, f64)>], rhs: &[f64]) -> Option<Vec<f64>> {
     let scale: f64 = rhs.iter().map(|v| v.abs()).sum();
+    let mut balanced = rhs.to_vec();
     let mut seen = vec![false; links.len()];
-    let mut stack = Vec::new();
+    let (mut stack, mut part) = (Vec::new(), Vec::new());
     for start in 0..links.len() {
         if seen[start] {
             continue;
         }
         seen[start] = true;
         stack.push(start);
+        part.clear();
         let mut sum = 0.0;
         while let Some(cell) = stack.pop() {
             sum += rhs[cell];
+            part.push(cell);
             for &(other, _) in &links[cell] {
                 if !seen[other] {
                     seen[other] = true;
@@ -695,10 +733,14 @@ fn every_part_balances(links: &[Vec<(usize, f64)>], rhs: &[f64]) -> bool {
             }
         }
         if sum.abs() > 1e-9 * scale {
-            return false;
+            return None;
+        }
+        let mean = sum / part.len() as f64;
+        for &cell in &part {
+            balanced[cell] -= mean;
         }
     }
-    true
+    Some(balanced)
 }
 
 /// Index of the face normal to `axis` at the low side of `cell` in the face array of `axis`.
@@ -884,8 +926,10 @@ mod tests {
 
     /// A partition from wall to wall between the supply and the exhaust (gaps of 1 cm, an
     /// eighth of a grid cell) leaves no way out for the air that comes in: an error naming
-    /// the furnishings, not a silently wrong flow. With a gap of two cells at one side the
-    /// flow is found and goes through the gap.
+    /// the furnishings, not a silently wrong flow; a box that covers an opening is refused by
+    /// the scene's check. With a gap of two cells at one side the flow is found and goes
+    /// through the gap. Openings whose flows miss their balance by what validation allows
+    /// still solve round a box.
     #[test]
     fn a_partition_that_shuts_the_supply_in_is_an_error() {
         let q = 60.0 / 3600.0;
@@ -894,6 +938,15 @@ mod tests {
         let shut = [Furnishing::new([2.0, 0.01, 0.01], [2.2, 2.99, 2.49])];
         let err = PotentialFlow::new(SIZE, &openings, &shut, CELLS_ALONG_LONGEST).unwrap_err();
         assert_eq!(err.field, "furnishings", "{err}");
+        assert!(err.requirement.starts_with("must not cut openings off"), "{err}");
+        assert!(validate_clearance(&openings, &shut, SIZE).is_ok());
+        // The same partition under a supply that it covers (1 cm below the ceiling): the
+        // supply's cells keep their faces open, so the flow would cross the box there; the
+        // scene's check refuses the box instead.
+        let covered = vec![Opening::supply(1, [2.1, 1.5], [0.6, 0.6], q), openings[1]];
+        let err = validate_clearance(&covered, &shut, SIZE).unwrap_err();
+        assert_eq!(err.field, "furnishings[0]", "{err}");
+        assert!((err.value - 0.01).abs() < 1e-12, "{err}");
         let gap = [Furnishing::new([2.0, 0.01, 0.01], [2.2, 2.83, 2.49])];
         let flow = PotentialFlow::new(SIZE, &openings, &gap, CELLS_ALONG_LONGEST).unwrap();
         let scale = q / (flow.h[0] * flow.h[1] * flow.h[2]);
@@ -914,6 +967,14 @@ mod tests {
             through(true),
             through(false)
         );
+        // Floor to ceiling through whole walls, 9e-10 apart (validation allows 1e-9), round a
+        // small box.
+        let whole = [
+            Opening::supply(0, [2.0, 1.5], [4.0, 3.0], q),
+            Opening::exhaust(1, [2.0, 1.5], [4.0, 3.0], q * (1.0 + 9e-10)),
+        ];
+        let small = [Furnishing::new([1.0, 1.0, 1.0], [1.5, 1.5, 1.5])];
+        assert!(PotentialFlow::new(SIZE, &whole, &small, CELLS_ALONG_LONGEST).is_ok());
     }
 
     /// A shelf standing 0.1 m in front of the exhaust, and a thin table top under the

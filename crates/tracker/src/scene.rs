@@ -406,7 +406,8 @@ impl Scene {
                 }
             }
         }
-        self.validate_furnishings(injection, largest)
+        self.validate_furnishings(injection, largest)?;
+        openings::validate_clearance(&self.openings, &self.furnishings, size)
     }
 
     /// The furnishings' part of [`Scene::validate`]; `largest` is the largest diameter
