@@ -872,6 +872,13 @@ fn opening_errors_name_the_file_line_and_key() {
         "`ventilation.air_changes_per_hour` = 1 must be 0 with `[[openings]]`",
     );
     run("unknown.toml", &supply.replace("flow_m3_per_hour", "flow"), "line 6: unknown field `flow`");
+    // A cabinet whose top stands 5 cm under the supply (a grid cell is 1/12 m): it covers it.
+    let cabinet = "[[furnishings]]\nlow = [0.5, 1.0, 1.0]\nhigh = [1.5, 2.0, 2.45]\n";
+    run(
+        "cover.toml",
+        &format!("{supply}{}{cabinet}", exhaust("x1", "[1.5, 0.3]", 60.0)),
+        "line 13: `furnishings[0]` is 0.0499",
+    );
 }
 
 #[test]

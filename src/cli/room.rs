@@ -683,7 +683,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 study.transient * study.scene.duration,
                 study.scene.duration
             );
-            decay_table(&rows, study.scene.exchange_rate() * 3600.0);
+            decay_table(&rows, study.scene.exchange_rate() * 3600.0, !study.scene.openings.is_empty());
         }
     }
     if let (Format::Table, Some(d)) = (args.format, &distribution) {
@@ -782,8 +782,9 @@ fn fitted_cell(m: &Measured) -> String {
 }
 
 /// The table's second part: each size read as a decay experiment (the fitted `beta` beside
-/// the study's) and where the release ends; `ach` the air changes per hour.
-fn decay_table(rows: &[Row], ach: f64) {
+/// the study's) and where the release ends; `ach` the air changes per hour, `openings`
+/// whether the exhaust is through openings (whose air need not be the room's mean).
+fn decay_table(rows: &[Row], ach: f64, openings: bool) {
     out!("");
     out!(
         "After the release at t = 0, as a decay experiment reads it: beta fitted = the least-squares slope of ln N(t) \
@@ -844,6 +845,15 @@ fn decay_table(rows: &[Row], ach: f64) {
         "The curve counts the tracked particles, which leave the air by their own deposits: where deposition \
          is rare it resolves beta far less well than the study's excursions (compare the errors)."
     );
+    let apart = rows.iter().filter_map(|r| r.decay_fit.as_ref()?.z).any(|z| z.abs() > 3.0);
+    if openings && apart {
+        out!(
+            "! beta fitted differs from the study's beta by more than 3 standard errors: through openings the exhaust \
+             draws the air near it, older or fresher than the room's mean, so the decay less a holds that difference \
+             too and is no deposition rate; the study's beta (deposits over airborne time) is (docs/tracker.md, \
+             \"What it means\")."
+        );
+    }
 }
 
 /// Below this deposition velocity (m/s) a model curve is not drawn: Lai & Nazaroff's ceiling

@@ -578,6 +578,18 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
     scene.furnishings = furnishings(path, &text, &file.furnishings, scene.geometry.size())?;
     scene.openings = openings(path, &text, &file.openings, &scene.geometry)?;
+    openings::validate_clearance(&scene.openings, &scene.furnishings, scene.geometry.size()).map_err(|e| {
+        // `furnishings[k]`: the line of that entry.
+        let k: usize = e.field.trim_start_matches("furnishings[").trim_end_matches(']').parse().unwrap_or(0);
+        let offset = file.furnishings.get(k).map_or(0, |f| f.span().start);
+        format!(
+            "{} line {}: `furnishings[{k}]` is {} m off an opening's wall and {}",
+            path.display(),
+            line_of(&text, offset),
+            e.value,
+            e.requirement.trim_end_matches(" (this is the gap, m)")
+        )
+    })?;
     set(&mut study.transient, file.run.transient);
     check_transient(path, study.transient)?;
     set(&mut study.diameters, file.particles.diameters.clone());
