@@ -9,6 +9,7 @@ use std::process::{Command, Output};
 use serde_json::Value;
 
 const THATCHER: [&str; 2] = ["examples/thatcher2002-bare-slow.toml", "examples/thatcher2002-bare-fast.toml"];
+const FURNISHED: [&str; 2] = ["examples/thatcher2002-furnished-slow.toml", "examples/thatcher2002-furnished-fast.toml"];
 const CHAMBER: &str = "examples/lai2005-chamber.toml";
 
 fn depo(args: &[&str]) -> Output {
@@ -47,6 +48,34 @@ fn measured_room_scenes_parse_run_and_have_the_papers_volumes() {
         let v = size.iter().product::<f64>();
         assert!((v / volume - 1.0).abs() < 1e-3, "{file}: volume {v} m^3");
         assert!(!report["sizes"].as_array().unwrap().is_empty(), "{file}");
+    }
+}
+
+/// The scene's settings: its lines without comments, up to its first furnishing.
+fn settings(file: &str) -> Vec<String> {
+    let text = std::fs::read_to_string(file).unwrap();
+    text.lines()
+        .map(|l| l.split('#').next().unwrap().trim().to_string())
+        .take_while(|l| l != "[[furnishings]]")
+        .filter(|l| !l.is_empty())
+        .collect()
+}
+
+#[test]
+fn furnished_rooms_are_the_bare_ones_with_the_papers_12_m2_of_furniture() {
+    for (bare, furnished) in THATCHER.into_iter().zip(FURNISHED) {
+        // The same room, air, flow, particles, walls and run: only the furniture differs.
+        assert_eq!(settings(furnished), settings(bare), "{furnished} against {bare}");
+        let quick = edited(furnished, &[("duration = 1800.0", "duration = 0.0")]);
+        let report = room_json(&quick);
+        let side = report["size_m"][0].as_f64().unwrap();
+        let air = report["air_volume_m3"].as_f64().unwrap();
+        let surface = report["surface_to_volume_per_m"].as_f64().unwrap() * air;
+        // Thatcher et al. (2002): fully furnished adds "12 m2 additional surface area" to the
+        // bare cube's six faces.
+        let added = surface - 6.0 * side * side;
+        assert!((added - 12.0).abs() < 0.01, "{furnished}: {added} m^2 of furniture");
+        assert!(air < side.powi(3) && air > 0.9 * side.powi(3), "{furnished}: {air} m^3 of air");
     }
 }
 
