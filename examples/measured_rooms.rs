@@ -176,7 +176,16 @@ fn main() -> Result<(), Error> {
         true,
     )?;
 
-    // Thatcher et al. (2002): beta furnished over beta bare, at both air speeds.
+    // Thatcher et al. (2002): beta furnished over beta bare, at both air speeds: each
+    // furnished run must be its bare twin's room and air, with one set of furniture.
+    for (bare, room) in [(&slow, &furnished[0]), (&fast, &furnished[1])] {
+        if room.side != bare.side || room.u_star != bare.u_star || room.sizes.len() != bare.sizes.len() {
+            return Err("a furnished run is not its bare twin's room, air speed and sizes (order: slow, fast)".into());
+        }
+    }
+    if slow.sizes.len() != fast.sizes.len() || furnished[0].surface_to_volume != furnished[1].surface_to_volume {
+        return Err("the slow and fast runs differ in their sizes or their furniture".into());
+    }
     let same_velocity = furnished[0].surface_to_volume / slow.surface_to_volume;
     println!(
         "\nThatcher et al. (2002) room fully furnished: {:.3} 1/m of surface per volume of air against {:.3} \
@@ -189,7 +198,7 @@ fn main() -> Result<(), Error> {
     for (k, s) in slow.sizes.iter().enumerate() {
         let mut row = format!("| {} |", (s.d_um * 1e3).round() / 1e3);
         for (speed, (bare, room)) in [(&slow, &furnished[0]), (&fast, &furnished[1])].into_iter().enumerate() {
-            let (b, f) = (&bare.sizes[k], room.sizes.get(k).ok_or("the furnished runs have fewer sizes")?);
+            let (b, f) = (&bare.sizes[k], &room.sizes[k]);
             if b.d_um != f.d_um {
                 return Err(format!("the bare and furnished runs differ in size: {} and {} um", b.d_um, f.d_um));
             }
@@ -212,7 +221,7 @@ fn main() -> Result<(), Error> {
             format!("every surface at one deposition velocity: {same_velocity:.2} (surface per volume)"),
             band(same_velocity),
         )
-        .color(0),
+        .color(4),
         Series::line(
             "measured, most: 2.6, smallest particles (Thatcher et al. 2002; per size not in the abstract)",
             band(THATCHER_FURNISHED_MOST),
