@@ -101,6 +101,13 @@ fn settling_beta(d_um: f64, side: f64) -> f64 {
     depo::tracker::Aerodynamics::new(d_um * 1e-6, DENSITY, &Air::standard(), GRAVITY).settling_speed / side * 3600.0
 }
 
+/// `beta` of `top` over `beta` of `bottom`, and its standard error. The runs are separate
+/// scenes; their errors are combined as independent.
+fn beta_ratio(top: &Size, bottom: &Size) -> (f64, f64) {
+    let r = top.beta.0 / bottom.beta.0;
+    (r, r * ((top.beta.1 / top.beta.0).powi(2) + (bottom.beta.1 / bottom.beta.0).powi(2)).sqrt())
+}
+
 fn log_grid(from: f64, to: f64, n: usize) -> Vec<f64> {
     (0..n).map(|i| from * (to / from).powf(i as f64 / (n - 1) as f64)).collect()
 }
@@ -129,9 +136,7 @@ fn main() -> Result<(), Error> {
         if s.d_um != f.d_um {
             return Err(format!("the two Thatcher runs differ in size: {} and {} um", s.d_um, f.d_um));
         }
-        let r = f.beta.0 / s.beta.0;
-        // The runs are separate scenes; their errors are combined as independent.
-        let e = r * ((f.beta.1 / f.beta.0).powi(2) + (s.beta.1 / s.beta.0).powi(2)).sqrt();
+        let (r, e) = beta_ratio(f, s);
         let model_ratio = model(s.d_um, fast.side, fast.u_star).0 / model(s.d_um, slow.side, slow.u_star).0;
         println!(
             "| {} | {:.3} | {:.3} +- {:.3} | {:.3} +- {:.3} | {:.2} +- {:.2} | {:.2} | {}-{} (all sizes) |",
@@ -202,8 +207,7 @@ fn main() -> Result<(), Error> {
             if b.d_um != f.d_um {
                 return Err(format!("the bare and furnished runs differ in size: {} and {} um", b.d_um, f.d_um));
             }
-            let r = f.beta.0 / b.beta.0;
-            let e = r * ((f.beta.1 / f.beta.0).powi(2) + (b.beta.1 / b.beta.0).powi(2)).sqrt();
+            let (r, e) = beta_ratio(f, b);
             row += &format!(" {:.3} +- {:.3} | {:.2} +- {:.2} |", f.beta.0, f.beta.1, r, e);
             gains[speed].push((s.d_um, r, e));
         }
