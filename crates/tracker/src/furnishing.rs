@@ -210,18 +210,21 @@ pub fn nearest_surfaces(x: [f64; 3], size: [f64; 3], boxes: &[Furnishing]) -> [(
                 0.0
             }
         });
-        let squares = along.map(|o| o * o);
+        // The box's distance is the same along every axis (the three offsets' norm); only the
+        // nearest surface it is compared with differs. The square root only where the box may
+        // be the nearer along some axis: a rounded root below `best` needs an exact one below
+        // it, so `squared` at most `best * best` rounded.
+        let squared = along[0] * along[0] + along[1] * along[1] + along[2] * along[2];
+        let farthest = nearest[0].0.max(nearest[1].0).max(nearest[2].0);
+        if squared > farthest * farthest {
+            continue;
+        }
+        let distance = squared.sqrt();
+        let inverse = if distance > 0.0 { 1.0 / distance } else { 0.0 };
         for (a, (best, slope)) in nearest.iter_mut().enumerate() {
-            let lateral = squares[(a + 1) % 3] + squares[(a + 2) % 3];
-            let squared = squares[a] + lateral;
-            // The square root only where this box may be the nearer: a rounded root below
-            // `best` needs an exact one below it, so `squared` at most `best * best` rounded.
-            if squared <= *best * *best {
-                let distance = squared.sqrt();
-                if distance < *best {
-                    *best = distance;
-                    *slope = if distance > 0.0 { along[a] / distance } else { 0.0 };
-                }
+            if distance < *best {
+                *best = distance;
+                *slope = along[a] * inverse;
             }
         }
     }

@@ -72,7 +72,7 @@ use crate::furnishing::Furnishing;
 use crate::geometry::Wall;
 use crate::intermittency::Intermittent;
 use crate::noise::{particle_rng, Normals};
-use crate::openings::{Opening, OpeningKind, PotentialFlow, CELLS_ALONG_LONGEST};
+use crate::openings::{FlowCell, Opening, OpeningKind, PotentialFlow, CELLS_ALONG_LONGEST};
 use crate::scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 
 mod contacts;
@@ -590,6 +590,8 @@ pub(crate) struct Flyer {
     /// Saffman's lift per unit relative velocity and root shear rate, `(9.69/pi) sqrt(rho mu) /
     /// (rho_p d)`.
     lift_coefficient: f64,
+    /// The cell of the openings' mean flow it was last in ([`PotentialFlow::velocity_in`]).
+    flow_cell: FlowCell,
 }
 
 impl Flyer {
@@ -609,6 +611,7 @@ impl Flyer {
             end,
             draws: StepNormals::new(normals),
             lift_coefficient,
+            flow_cell: FlowCell::NONE,
         }
     }
 
@@ -641,7 +644,7 @@ impl Flyer {
     /// the fluid velocity seen at `x` (its fluctuation as it stands) plus its settling: the
     /// exponential scheme's exact flight for that constant target, without Brownian motion
     /// or lift; `x` itself where that leaves the fluid. [`Scheme::Midpoint`]'s predictor.
-    fn half_step_position(&self, p: &Prepared<'_>, x: DVec3, v: DVec3) -> DVec3 {
+    fn half_step_position(&mut self, p: &Prepared<'_>, x: DVec3, v: DVec3) -> DVec3 {
         let field = &p.field;
         let mut u0 = if p.boxes.is_empty() {
             fluid_velocity::<true>(field, p.size, x, &self.zeta)
@@ -650,7 +653,7 @@ impl Flyer {
             furnished_fluid_velocity(field, p.size, p.boxes, x, &mut zeta, None)
         };
         if let Some(mean) = &p.mean_flow {
-            u0 += DVec3::from_array(mean.velocity(x.to_array()));
+            u0 += DVec3::from_array(mean.velocity_in(x.to_array(), &mut self.flow_cell));
         }
         let target = u0 + self.body.settling;
         // Over h = dt / 2: x + target h + (v - target) tau (1 - exp(-h / tau)).
@@ -694,7 +697,7 @@ impl Flyer {
             fluid_velocity::<false>(field, p.size, x, &self.zeta)
         };
         if let Some(mean) = &p.mean_flow {
-            uf += DVec3::from_array(mean.velocity(at.to_array()));
+            uf += DVec3::from_array(mean.velocity_in(at.to_array(), &mut self.flow_cell));
         }
         let body = &mut self.body;
         if FINITE_RE {
