@@ -533,7 +533,8 @@ impl PotentialFlow {
     #[inline]
     #[must_use]
     pub fn velocity(&self, x: [f64; 3]) -> [f64; 3] {
-        let mut u: [f64; 3] = std::array::from_fn(|a| self.component(a, x));
+        let cell = self.cell_index(x);
+        let mut u: [f64; 3] = std::array::from_fn(|a| self.component(a, x, cell));
         for b in &self.boxes {
             // Most of the room is more than a cell from any box.
             if (0..3).any(|a| x[a] < b[0][a] - self.h[a] || x[a] > b[1][a] + self.h[a]) {
@@ -576,13 +577,19 @@ impl PotentialFlow {
         std::array::from_fn(|a| cell.base[a] + (x[a] - cell.low[a]) * cell.slope[a])
     }
 
+    /// The indices of the grid cell holding `x` (clamped to the grid).
+    #[inline]
+    fn cell_index(&self, x: [f64; 3]) -> [usize; 3] {
+        std::array::from_fn(|a| ((x[a] / self.h[a]).max(0.0) as usize).min(self.cells[a] - 1))
+    }
+
     /// The grid cell holding `x`, with the velocity over it where that is affine (each
     /// component linear along its own axis): not where a furnishing's face damps the flow
     /// (within a cell of a box), nor in a cell on a wall with openings whose wall face an
     /// opening's edge cuts (the wall's value there changes across the face).
     fn cell(&self, x: [f64; 3]) -> FlowCell {
         let cells = self.cells;
-        let cell: [usize; 3] = std::array::from_fn(|a| ((x[a] / self.h[a]).max(0.0) as usize).min(cells[a] - 1));
+        let cell = self.cell_index(x);
         let low: [f64; 3] = std::array::from_fn(|a| cell[a] as f64 * self.h[a]);
         let high: [f64; 3] = std::array::from_fn(|a| (cell[a] + 1) as f64 * self.h[a]);
         let mut affine = FlowCell { low, high, base: [0.0; 3], slope: [0.0; 3], affine: false };
@@ -636,9 +643,8 @@ impl PotentialFlow {
     /// faces is a wall with openings, the wall's value there is the opening's velocity at
     /// `x`'s in-plane position, or zero outside the openings (not the face's average).
     #[inline]
-    fn component(&self, axis: usize, x: [f64; 3]) -> f64 {
+    fn component(&self, axis: usize, x: [f64; 3], cell: [usize; 3]) -> f64 {
         let cells = self.cells;
-        let cell: [usize; 3] = std::array::from_fn(|a| ((x[a] / self.h[a]).max(0.0) as usize).min(cells[a] - 1));
         let t = (x[axis] / self.h[axis] - cell[axis] as f64).clamp(0.0, 1.0);
         let low = face_index(cells, axis, cell);
         // Along `axis` in its own face array (`cells` but one more along `axis`).

@@ -130,9 +130,15 @@ fn wall_gap(p: &Prepared<'_>, x: DVec3, r: f64) -> f64 {
             gap = gap.min(x[a] - p.lower[a]).min(p.upper[a] - x[a]);
         }
     }
+    // The boxes' squared distances, and a square root only where the nearest is nearer than
+    // the walls (the same minimum: a root below `gap` needs a square at most `gap^2` rounded).
+    let mut squared = f64::INFINITY;
     for b in p.boxes {
         let outside = |a: usize| (b.low[a] - x[a]).max(x[a] - b.high[a]).max(0.0);
-        gap = gap.min((0..3).map(|a| outside(a).powi(2)).sum::<f64>().sqrt());
+        squared = squared.min((0..3).map(|a| outside(a).powi(2)).sum::<f64>());
+    }
+    if squared <= gap * gap * (1.0 + 1e-12) {
+        gap = gap.min(squared.sqrt());
     }
     gap - r
 }
@@ -141,8 +147,26 @@ fn wall_gap(p: &Prepared<'_>, x: DVec3, r: f64) -> f64 {
 /// outside the box, the separation less the stop distance `tau v` of its velocity towards
 /// the box; in front of a face (outside along one axis only) that, as for a wall; beyond an
 /// edge or corner, the Euclidean norm of the separations left (none below zero).
-#[inline]
+#[cfg(test)]
 fn box_free_flight_gap(b: &Furnishing, x: DVec3, v: DVec3, tau: f64) -> f64 {
+    match box_free_flight_separation(b, x, v, tau) {
+        Separation::Face(gap) => gap,
+        Separation::Squared(squares) => squares.sqrt(),
+    }
+}
+
+/// [`box_free_flight_gap`] before its square root.
+enum Separation {
+    /// In front of a face: the gap itself.
+    Face(f64),
+    /// Beyond an edge or corner: the gap squared.
+    Squared(f64),
+}
+
+/// [`box_free_flight_gap`] as a [`Separation`], so that the nearest box takes one square
+/// root rather than each box one.
+#[inline]
+fn box_free_flight_separation(b: &Furnishing, x: DVec3, v: DVec3, tau: f64) -> Separation {
     let (mut outside, mut single, mut squares) = (0, 0.0, 0.0);
     for a in 0..3 {
         let separation = if x[a] < b.low[a] {
@@ -157,9 +181,9 @@ fn box_free_flight_gap(b: &Furnishing, x: DVec3, v: DVec3, tau: f64) -> f64 {
         squares += separation.max(0.0).powi(2);
     }
     if outside == 1 {
-        single
+        Separation::Face(single)
     } else {
-        squares.sqrt()
+        Separation::Squared(squares)
     }
 }
 
@@ -179,8 +203,17 @@ fn free_flight_gap(p: &Prepared<'_>, flyer: &Flyer) -> f64 {
             gap = gap.min(lower).min(upper);
         }
     }
+    let mut squared = f64::INFINITY;
     for b in p.boxes {
-        gap = gap.min(box_free_flight_gap(b, x, v, tau) - r);
+        match box_free_flight_separation(b, x, v, tau) {
+            Separation::Face(face) => gap = gap.min(face - r),
+            Separation::Squared(squares) => squared = squared.min(squares),
+        }
+    }
+    // A root only where an edge or corner may be the nearest (as in `wall_gap`).
+    let bound = gap + r;
+    if bound > 0.0 && squared <= bound * bound * (1.0 + 1e-12) {
+        gap = gap.min(squared.sqrt() - r);
     }
     gap
 }
