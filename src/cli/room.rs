@@ -9,7 +9,7 @@ use depo::tracker::decay::MIN_AIRBORNE;
 use depo::tracker::distribution::{first_seen, DistributionStudy};
 use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::geometry::in_plane_axes;
-use depo::tracker::studies::MAP_BINS;
+use depo::tracker::studies::{self, MAP_BINS};
 use depo::tracker::studies::{RoomPoint, RoomStudy};
 use depo::tracker::{binomial_error, DecayCurve, Estimate, Flow, Geometry, WallTally};
 use serde::Serialize;
@@ -151,6 +151,9 @@ struct Row {
     method: &'static str,
     /// With excursions: the share of their weight given up at their longest duration.
     excursions_truncated: Option<f64>,
+    /// With excursions: that longest duration, s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    longest_excursion_s: Option<f64>,
     wall_tally: Tally,
     deposited: Deposited,
     /// Where the released particles are at the end: per surface, exhausted, airborne.
@@ -354,6 +357,7 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
         particles: p.particles,
         method: if p.excursions.is_some() { "excursions" } else { "plain" },
         excursions_truncated: p.excursions,
+        longest_excursion_s: p.longest_excursion,
         wall_tally: p.tally.into(),
         release: {
             let floor = size[0] * size[1];
@@ -645,10 +649,10 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             };
             for (i, r) in rows.iter().enumerate() {
                 density_heading(&rows, i);
-                let method = match r.excursions_truncated {
-                    Some(t) if t > 1e-3 => format!("excursions ({:.1} %)", 100.0 * t),
-                    Some(_) => "excursions".to_string(),
-                    None => "plain".to_string(),
+                let method = match (r.excursions_truncated, r.longest_excursion_s) {
+                    (Some(t), Some(s)) if t > 1e-3 => format!("excursions ({:.1} % at {s:.0} s)", 100.0 * t),
+                    (Some(_), _) => "excursions".to_string(),
+                    (None, _) => "plain".to_string(),
                 };
                 out!(
                     "{:>8.3}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>20} {:>7.3} {:>6.2}{}  {method}",
@@ -670,7 +674,11 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             if furnished {
                 furnishings_table(&rows, &study);
             }
-            out!("{ERROR_NOTE}");
+            out!(
+                "{ERROR_NOTE} With it, that duration: {:.0} wall time units, or 2, 4 or 8 times that where a pilot run gave up more than {:.1} % of the weight.",
+                studies::ROOM_LONGEST_EXCURSION,
+                100.0 * studies::LONGEST_SHARE
+            );
             if rows.iter().any(|r| !r.unresolved.is_empty()) {
                 out!(
                     "* unresolved: no deposit event, or a relative standard error above {} % where Lai & Nazaroff give at least {:.0e} m/s.",

@@ -179,7 +179,9 @@ impl Excursions {
     /// These excursions with their splitting factors calibrated for `scene` and `injection`:
     /// `rounds` pilot runs of `count` particles, each with the factors the one before found
     /// ([`Splitting::calibrated`], at most `max` per level). The pilots use their own seed, so
-    /// the run that follows is as unbiased as with any fixed factors.
+    /// the run that follows is as unbiased as with any fixed factors. Also the last pilot's
+    /// share of weight given up at [`Excursions::max_duration`]
+    /// ([`Run::truncated_share`](crate::Run::truncated_share)).
     pub fn calibrated(
         mut self,
         scene: &Scene,
@@ -187,10 +189,11 @@ impl Excursions {
         count: usize,
         rounds: usize,
         max: u32,
-    ) -> Result<Self, SceneError> {
+    ) -> Result<(Self, f64), SceneError> {
         let mut pilot = scene.clone();
         pilot.seed = scene.seed ^ PILOT_SALT;
         let injection = Injection { count, ..*injection };
+        let mut truncated = 0.0;
         for _ in 0..rounds {
             pilot.excursions = Some(self.clone());
             let result = run(&pilot, &injection)?;
@@ -205,8 +208,9 @@ impl Excursions {
                 }
             }
             self.splitting = self.splitting.calibrated(started, &arrivals, &branches, max);
+            truncated = result.truncated_share();
         }
-        Ok(self)
+        Ok((self, truncated))
     }
 }
 

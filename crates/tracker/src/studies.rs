@@ -137,9 +137,27 @@ pub const TARGET_ERROR: f64 = 0.05;
 /// `target_error`: a margin for the errors' own spread.
 pub const TARGET_MARGIN: f64 = 1.15;
 
+/// The share of the excursions' weight given up at their longest duration
+/// ([`Run::truncated_share`](crate::Run::truncated_share)) above which a room study's pilot
+/// doubles that duration and runs again: half of [`TARGET_ERROR`], so that what giving them
+/// up may miss (at most that share, had every branch given up deposited) stays within half
+/// a resolved figure's error. The default room gives up 0.3-1.3 % at 0.1-1 um; the measured
+/// rooms of Thatcher et al. (2002), at their lower friction velocities, up to 17 % at 0.5 um.
+pub const LONGEST_SHARE: f64 = 0.025;
+
+/// The most times a room study doubles its excursions' longest duration (from
+/// [`ROOM_LONGEST_EXCURSION`] to eight times that).
+pub const LONGEST_DOUBLINGS: u32 = 3;
+
+/// The longest a room study follows an excursion at first, in wall time units (`nu / u*^2`):
+/// 2400 s at `u* = 1 cm/s`.
+pub const ROOM_LONGEST_EXCURSION: f64 = 16_000.0;
+
 /// `scene` with the studies' excursions, calibrated by a pilot of `pilot` particles of
 /// `injection` with factors up to `max`; `inner` and `max_duration` in wall units; `sweeps`
-/// and `coarse_factor` as [`Excursions`] has them. Also the pilot's wall-clock time, s.
+/// and `coarse_factor` as [`Excursions`] has them. With `lengthen`, while the pilot gives up
+/// more than [`LONGEST_SHARE`] of the weight, the longest duration doubles and the pilot runs
+/// again, up to [`LONGEST_DOUBLINGS`] times. Also the pilots' wall-clock time, s.
 #[allow(clippy::too_many_arguments)]
 fn with_excursions(
     mut scene: Scene,
@@ -150,6 +168,7 @@ fn with_excursions(
     max: u32,
     sweeps: Option<Sweeps>,
     coarse_factor: u32,
+    lengthen: bool,
 ) -> Result<(Scene, f64), SceneError> {
     let start = std::time::Instant::now();
     let u_star = scene.flow.friction_velocity().unwrap_or(0.0);
@@ -157,13 +176,21 @@ fn with_excursions(
         let nu = scene.air.kinematic_viscosity();
         // With sweeps, one excursion per crossing of the layer: the sweeps carry the deposits.
         let sampling = if sweeps.is_some() { 1.0 } else { STUDY_SAMPLING };
-        let excursions = Excursions {
-            sweeps,
-            coarse_factor,
-            ..Excursions::in_wall_units(u_star, nu, inner, sampling, max_duration)
-        };
         let (_, rounds) = PILOT;
-        scene.excursions = Some(excursions.calibrated(&scene, injection, pilot.max(1), rounds, max)?);
+        let mut duration = max_duration;
+        for doublings in 0.. {
+            let excursions = Excursions {
+                sweeps: sweeps.clone(),
+                coarse_factor,
+                ..Excursions::in_wall_units(u_star, nu, inner, sampling, duration)
+            };
+            let (calibrated, truncated) = excursions.calibrated(&scene, injection, pilot.max(1), rounds, max)?;
+            scene.excursions = Some(calibrated);
+            if !lengthen || truncated <= LONGEST_SHARE || doublings == LONGEST_DOUBLINGS {
+                break;
+            }
+            duration *= 2.0;
+        }
     }
     Ok((scene, start.elapsed().as_secs_f64()))
 }
@@ -219,6 +246,10 @@ pub struct RoomPoint {
     /// Whether deposits were counted by near-wall excursions, and if so the share of their
     /// weight given up at their longest duration ([`Run::truncated_share`](crate::Run::truncated_share)).
     pub excursions: Option<f64>,
+    /// With excursions, their longest duration ([`Excursions::max_duration`]), s:
+    /// [`ROOM_LONGEST_EXCURSION`], doubled while the pilot gave up more than
+    /// [`LONGEST_SHARE`] of the weight.
+    pub longest_excursion: Option<f64>,
     /// Wall-clock time of the excursions' pilot calibration, s (0 without excursions): a
     /// cost fixed per run, which does not grow with the particles run.
     pub calibration_seconds: f64,
@@ -338,11 +369,15 @@ impl RoomStudy {
             let mut calibration_seconds = 0.0;
             if self.excursions {
                 // Down to 0.05 wall units (75 um at u* = 1 cm/s), inside the Brownian sublayer
-                // of every size; given up after 16000 wall time units (2400 s at 1 cm/s). The
-                // pilot has 500 particles, or a quarter of a smaller first run.
+                // of every size; given up after 16000 wall time units (2400 s at 1 cm/s), or
+                // up to eight times as long where the pilot gives up more than
+                // `LONGEST_SHARE` of the weight. The pilot has 500 particles, or a quarter of
+                // a smaller first run.
                 let pilot = (self.count / PILOT.0).max(self.count.min(500));
+                let longest = ROOM_LONGEST_EXCURSION;
                 (scene, calibration_seconds) =
-                    with_excursions(scene, &injection, pilot, 0.05, 16_000.0, 16, None, 1).map_err(for_diameters)?;
+                    with_excursions(scene, &injection, pilot, 0.05, longest, 16, None, 1, true)
+                        .map_err(for_diameters)?;
             }
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             let mut result = run(&scene, &injection).map_err(for_diameters)?;
@@ -384,6 +419,7 @@ impl RoomStudy {
                 particle_steps: result.particle_steps(),
                 particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
+                longest_excursion: scene.excursions.as_ref().map(|e| e.max_duration),
                 calibration_seconds,
                 tally: total(&result.tallies),
                 maps: result
@@ -554,7 +590,7 @@ impl ChannelStudy {
                 // Without sweeps the branches hover in the viscous sublayer: coarse steps there.
                 let coarse = if sweeps.is_some() { 1 } else { CHANNEL_COARSE_FACTOR };
                 (scene, calibration_seconds) =
-                    with_excursions(scene, &injection, pilot, inner, longest, 4, sweeps, coarse)?;
+                    with_excursions(scene, &injection, pilot, inner, longest, 4, sweeps, coarse, false)?;
             }
             let all_walls = |r: &Run| r.deposition_velocity(&(0..r.walls.len()).collect::<Vec<_>>());
             let mut result = run(&scene, &injection)?;
@@ -625,5 +661,32 @@ mod tests {
         assert_eq!(particles_for(&e, 1000, 0.2), 288);
         let none = Estimate { value: 0.0, error: 0.0, events: 0, upper_bound: 1.0 };
         assert_eq!(particles_for(&none, 1000, 0.05), usize::MAX);
+    }
+
+    /// A room study's excursions are followed twice as long while their pilot gives up more
+    /// than `LONGEST_SHARE` of the weight, at most `LONGEST_DOUBLINGS` times. Given up after 20
+    /// wall time units (3 s at u* = 1 cm/s: most excursions are still in the layer), 0.3 um
+    /// particles are followed eight times as long, and then still give up more than 2.5 %;
+    /// after 16000, once. Without `lengthen` (the channel's) the duration stays.
+    #[test]
+    fn a_room_s_excursions_are_followed_longer_while_the_pilot_gives_up_too_much() {
+        let mut scene = RoomStudy::default().scene;
+        scene.duration = 300.0;
+        scene.average_from = 30.0;
+        let injection = Injection::new(100, SizeDistribution::Monodisperse { diameter: 0.3e-6 }, 1000.0);
+        let unit = scene.air.kinematic_viscosity() / 1e-4; // nu / u*^2, s
+        let longest = |base: f64, lengthen: bool| {
+            let (scene, _) =
+                with_excursions(scene.clone(), &injection, 100, 0.05, base, 16, None, 1, lengthen).unwrap();
+            let max_duration = scene.excursions.as_ref().unwrap().max_duration;
+            let share = run(&Scene { seed: 7, ..scene.clone() }, &injection).unwrap().truncated_share();
+            (max_duration / unit, share)
+        };
+        let (short, share) = longest(20.0, true);
+        assert!((short - 160.0).abs() < 1e-9 && share > LONGEST_SHARE, "{short} {share}");
+        let (kept, _) = longest(20.0, false);
+        assert!((kept - 20.0).abs() < 1e-9, "{kept}");
+        let (long, share) = longest(ROOM_LONGEST_EXCURSION, true);
+        assert!((long - ROOM_LONGEST_EXCURSION).abs() < 1e-6 && share < LONGEST_SHARE, "{long} {share}");
     }
 }

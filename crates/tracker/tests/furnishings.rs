@@ -249,7 +249,7 @@ fn excursions_agree_with_plain_tracking_at_a_box() {
     split.seed += 1;
     let nu = split.air.kinematic_viscosity();
     let excursions = depo_tracker::Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0);
-    split.excursions = Some(excursions.calibrated(&split, &injection, 100, 1, 8).unwrap());
+    split.excursions = Some(excursions.calibrated(&split, &injection, 100, 1, 8).unwrap().0);
     let split = run(&split, &injection).unwrap();
     let faces = plain.furnishing_faces(0);
     for f in &faces {

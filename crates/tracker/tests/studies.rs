@@ -232,7 +232,7 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
             let plain = run(scene, &Injection { count: plain_count, ..*injection }).unwrap();
             let mut split = scene.clone();
             split.seed += 1;
-            let excursions = excursions.calibrated(&split, injection, injection.count / 4, 1, 8).unwrap();
+            let excursions = excursions.calibrated(&split, injection, injection.count / 4, 1, 8).unwrap().0;
             split.excursions = Some(excursions);
             let split = run(&split, injection).unwrap();
             let (a, b) = (plain.deposition_velocity(walls), split.deposition_velocity(walls));
@@ -289,7 +289,7 @@ fn excursions_with_sweeps_agree_with_plain_tracking() {
     let with_sweeps = Excursions { sweeps: Some(CHANNEL_SWEEPS), ..layer_only.clone() };
     let started = |excursions: Excursions| {
         let mut scene = split.clone();
-        scene.excursions = Some(excursions.calibrated(&scene, &injection, 100, 1, 4).unwrap());
+        scene.excursions = Some(excursions.calibrated(&scene, &injection, 100, 1, 4).unwrap().0);
         let result = run(&scene, &injection).unwrap();
         let started: u32 = result.particles.iter().map(|p| p.excursions).sum();
         (result, started)
@@ -318,7 +318,7 @@ fn coarse_excursion_steps_agree_with_the_scenes_step() {
     let estimate = |excursions: Excursions, seed: u64| {
         let mut scene = scene.clone();
         scene.seed = seed;
-        scene.excursions = Some(excursions.calibrated(&scene, &injection, 250, 1, 4).unwrap());
+        scene.excursions = Some(excursions.calibrated(&scene, &injection, 250, 1, 4).unwrap().0);
         run(&scene, &injection).unwrap().deposition_velocity(&[0, 1])
     };
     let coarse = Excursions { coarse_factor: CHANNEL_COARSE_FACTOR, ..fine.clone() };
@@ -348,7 +348,7 @@ fn excursions_agree_with_plain_tracking_under_the_intermittent_model() {
     for (excursions, what) in [(layer, "layer"), (sweeps, "sweeps")] {
         let mut split = scene.clone();
         split.seed += 1;
-        split.excursions = Some(excursions.calibrated(&split, &injection, 500, 1, 4).unwrap());
+        split.excursions = Some(excursions.calibrated(&split, &injection, 500, 1, 4).unwrap().0);
         let b = run(&split, &injection).unwrap().deposition_velocity(&[0, 1]);
         assert!(b.error < 0.2 * b.value, "{what}: plain {a:?}, excursions {b:?}");
         assert!(z(a, b) < 3.0, "tau+ 3, intermittent, {what}: plain {a:?}, excursions {b:?}");
