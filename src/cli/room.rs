@@ -78,10 +78,14 @@ const RESOLVED_ERROR: f64 = 0.05;
 const RESOLVABLE: f64 = 1e-7;
 
 /// Whether a surface's deposition velocity `measured` is unresolved beside the model's `model`
-/// (m/s): no deposit event, or a relative standard error above [`RESOLVED_ERROR`] where the
-/// model gives at least [`RESOLVABLE`].
-fn unresolved(measured: &Measured, model: f64) -> bool {
-    measured.events == 0 || (model >= RESOLVABLE && measured.error > RESOLVED_ERROR * measured.value)
+/// (m/s), its run's excursions having given up the share `given_up` of their weight at their
+/// longest duration: no deposit event; or, where the model gives at least [`RESOLVABLE`], a
+/// relative standard error above [`RESOLVED_ERROR`], or a given-up share above it (what
+/// giving them up may have missed, at most that share, could then exceed a resolved figure's
+/// error).
+fn unresolved(measured: &Measured, model: f64, given_up: f64) -> bool {
+    measured.events == 0
+        || (model >= RESOLVABLE && (measured.error > RESOLVED_ERROR * measured.value || given_up > RESOLVED_ERROR))
 }
 
 /// The note under a study's table: what its numbers mean.
@@ -335,7 +339,7 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
     let unresolved =
         [("floor", &floor, p.model.floor), ("ceiling", &ceiling, p.model.ceiling), ("walls", &walls, p.model.wall)]
             .into_iter()
-            .filter(|(_, m, model)| unresolved(m, *model))
+            .filter(|(_, m, model)| unresolved(m, *model, p.excursions.unwrap_or(0.0)))
             .map(|(name, ..)| name)
             .collect();
     Row {
@@ -681,9 +685,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             );
             if rows.iter().any(|r| !r.unresolved.is_empty()) {
                 out!(
-                    "* unresolved: no deposit event, or a relative standard error above {} % where Lai & Nazaroff give at least {:.0e} m/s.",
-                    100.0 * RESOLVED_ERROR,
-                    RESOLVABLE
+                    "* unresolved: no deposit event, or, where Lai & Nazaroff give at least {:.0e} m/s, a relative standard error or a share given up above {} %.",
+                    RESOLVABLE,
+                    100.0 * RESOLVED_ERROR
                 );
             }
             out!(
@@ -1061,4 +1065,21 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
         if first_seen(rows.iter().map(|r| r.density)).len() > 1 { "-DENSITYkgm3" } else { "" }
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Resolved: events, and where the model asks it, an error and a given-up share within 5 %.
+    #[test]
+    fn a_figure_is_unresolved_by_its_error_or_by_what_its_excursions_gave_up() {
+        let m = |error: f64, events| Measured { value: 1e-6, error, events, upper_bound: None };
+        assert!(!unresolved(&m(4e-8, 100), 1e-6, 0.01));
+        assert!(unresolved(&m(6e-8, 100), 1e-6, 0.01));
+        assert!(unresolved(&m(4e-8, 100), 1e-6, 0.06));
+        assert!(unresolved(&m(0.0, 0), 1e-9, 0.0));
+        // Below the model's 1e-7 m/s neither the error nor the given-up share is asked.
+        assert!(!unresolved(&m(6e-7, 100), 1e-8, 0.06));
+    }
 }
