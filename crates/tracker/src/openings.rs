@@ -557,10 +557,10 @@ impl PotentialFlow {
 
     /// [`PotentialFlow::velocity`] at `x`, the same to rounding, read from `cell` where it
     /// holds `x` and the velocity is affine over it; where it does not hold `x`, `cell`
-    /// becomes the grid cell that does. A particle keeps its own `cell` from step to step: it stays in one
-    /// for many steps (a cell is centimetres wide, a step moves it millimetres), so most
-    /// reads are six comparisons and three multiply-adds instead of locating the cell and
-    /// loading its six faces.
+    /// becomes the grid cell that does. A particle keeps its own `cell` from step to step:
+    /// it stays in one for many steps (a cell is centimetres wide, a step moves it
+    /// millimetres), so most reads are six comparisons and three multiply-adds instead of
+    /// locating the cell and loading its six faces.
     #[inline]
     pub fn velocity_in(&self, x: [f64; 3], cell: &mut FlowCell) -> [f64; 3] {
         if !cell.holds(x) {
