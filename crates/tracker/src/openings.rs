@@ -588,7 +588,6 @@ impl PotentialFlow {
     /// (within a cell of a box), nor in a cell on a wall with openings whose wall face an
     /// opening's edge cuts (the wall's value there changes across the face).
     fn cell(&self, x: [f64; 3]) -> FlowCell {
-        let cells = self.cells;
         let cell = self.cell_index(x);
         let low: [f64; 3] = std::array::from_fn(|a| cell[a] as f64 * self.h[a]);
         let high: [f64; 3] = std::array::from_fn(|a| (cell[a] + 1) as f64 * self.h[a]);
@@ -599,25 +598,39 @@ impl PotentialFlow {
             }
         }
         for axis in 0..3 {
-            let stride = [1, cells[0], cells[0] * cells[1]][axis];
-            let f = &self.faces[axis];
-            let index = face_index(cells, axis, cell);
-            let (mut below, mut above) = (f[index], f[index + stride]);
-            let wall = [2, 4, 0][axis];
             let across = |wall| self.across_wall_face(wall, axis, low, high);
-            if cell[axis] == 0 && !self.openings[wall].is_empty() {
-                let Some(u) = across(wall) else { return affine };
-                below = u;
-            }
-            if cell[axis] == cells[axis] - 1 && !self.openings[wall + 1].is_empty() {
-                let Some(u) = across(wall + 1) else { return affine };
-                above = u;
-            }
+            let Some((below, above)) = self.faces_across(axis, cell, across) else { return affine };
             affine.base[axis] = below;
             affine.slope[axis] = (above - below) / self.h[axis];
         }
         affine.affine = true;
         affine
+    }
+
+    /// The velocity along `axis` on the two faces of `cell` normal to it; where one of them
+    /// is a wall with openings, `on_wall(wall)` instead of the face's average (`None` from it
+    /// gives `None`).
+    #[inline]
+    fn faces_across(
+        &self,
+        axis: usize,
+        cell: [usize; 3],
+        on_wall: impl Fn(usize) -> Option<f64>,
+    ) -> Option<(f64, f64)> {
+        let cells = self.cells;
+        let low = face_index(cells, axis, cell);
+        // Along `axis` in its own face array (`cells` but one more along `axis`).
+        let stride = [1, cells[0], cells[0] * cells[1]][axis];
+        let f = &self.faces[axis];
+        let (mut below, mut above) = (f[low], f[low + stride]);
+        let wall = [2, 4, 0][axis];
+        if cell[axis] == 0 && !self.openings[wall].is_empty() {
+            below = on_wall(wall)?;
+        }
+        if cell[axis] == cells[axis] - 1 && !self.openings[wall + 1].is_empty() {
+            above = on_wall(wall + 1)?;
+        }
+        Some((below, above))
     }
 
     /// [`PotentialFlow::at_wall`] over the whole wall face of the cell from `low` to `high`
@@ -644,20 +657,9 @@ impl PotentialFlow {
     /// `x`'s in-plane position, or zero outside the openings (not the face's average).
     #[inline]
     fn component(&self, axis: usize, x: [f64; 3], cell: [usize; 3]) -> f64 {
-        let cells = self.cells;
         let t = (x[axis] / self.h[axis] - cell[axis] as f64).clamp(0.0, 1.0);
-        let low = face_index(cells, axis, cell);
-        // Along `axis` in its own face array (`cells` but one more along `axis`).
-        let stride = [1, cells[0], cells[0] * cells[1]][axis];
-        let f = &self.faces[axis];
-        let (mut below, mut above) = (f[low], f[low + stride]);
-        let wall = [2, 4, 0][axis];
-        if cell[axis] == 0 && !self.openings[wall].is_empty() {
-            below = self.at_wall(wall, axis, x);
-        }
-        if cell[axis] == cells[axis] - 1 && !self.openings[wall + 1].is_empty() {
-            above = self.at_wall(wall + 1, axis, x);
-        }
+        let (below, above) =
+            self.faces_across(axis, cell, |wall| Some(self.at_wall(wall, axis, x))).unwrap_or_default();
         (1.0 - t) * below + t * above
     }
 
@@ -1088,6 +1090,11 @@ mod tests {
         assert!(PotentialFlow::new(SIZE, &whole, &small, CELLS_ALONG_LONGEST).is_ok());
     }
 
+    /// The furnished example room's shelf (0.1 m in front of the `x1` wall) and table top.
+    fn shelf_and_table() -> [Furnishing; 2] {
+        [Furnishing::new([3.5, 0.2, 0.3], [3.9, 2.8, 2.0]), Furnishing::new([1.0, 1.0, 0.7], [2.2, 1.8, 0.75])]
+    }
+
     /// A shelf standing 0.1 m in front of the exhaust, and a thin table top under the
     /// supply: the flow goes round them. Every cell of air keeps a zero divergence, each
     /// opening its flow, and no air crosses a box: no face between cells whose centres a box
@@ -1097,8 +1104,7 @@ mod tests {
         let q = 60.0 / 3600.0;
         let openings =
             vec![Opening::supply(1, [1.0, 1.5], [0.6, 0.6], q), Opening::exhaust(3, [1.5, 0.3], [0.5, 0.3], q)];
-        let boxes =
-            [Furnishing::new([3.5, 0.2, 0.3], [3.9, 2.8, 2.0]), Furnishing::new([1.0, 1.0, 0.7], [2.2, 1.8, 0.75])];
+        let boxes = shelf_and_table();
         let started = std::time::Instant::now();
         let flow = PotentialFlow::new(SIZE, &openings, &boxes, CELLS_ALONG_LONGEST).unwrap();
         let solve = started.elapsed();
@@ -1138,9 +1144,7 @@ mod tests {
         let q = 60.0 / 3600.0;
         let openings =
             vec![Opening::supply(1, [1.03, 1.51], [0.6, 0.6], q), Opening::exhaust(3, [1.5, 0.3], [0.5, 0.3], q)];
-        let boxes =
-            [Furnishing::new([3.5, 0.2, 0.3], [3.9, 2.8, 2.0]), Furnishing::new([1.0, 1.0, 0.7], [2.2, 1.8, 0.75])];
-        let flow = PotentialFlow::new(SIZE, &openings, &boxes, CELLS_ALONG_LONGEST).unwrap();
+        let flow = PotentialFlow::new(SIZE, &openings, &shelf_and_table(), CELLS_ALONG_LONGEST).unwrap();
         let mut rng = crate::noise::particle_rng(7, 0);
         let (mut cached, mut reads) = (0, 0);
         for _ in 0..200 {

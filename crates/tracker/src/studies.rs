@@ -369,10 +369,9 @@ impl RoomStudy {
             let mut calibration_seconds = 0.0;
             if self.excursions {
                 // Down to 0.05 wall units (75 um at u* = 1 cm/s), inside the Brownian sublayer
-                // of every size; given up after 16000 wall time units (2400 s at 1 cm/s), or
-                // up to eight times as long where the pilot gives up more than
-                // `LONGEST_SHARE` of the weight. The pilot has 500 particles, or a quarter of
-                // a smaller first run.
+                // of every size; given up after `ROOM_LONGEST_EXCURSION`, lengthened while the
+                // pilot gives up too much. The pilot has 500 particles, or a quarter of a
+                // smaller first run.
                 let pilot = (self.count / PILOT.0).max(self.count.min(500));
                 let longest = ROOM_LONGEST_EXCURSION;
                 (scene, calibration_seconds) =
