@@ -316,6 +316,9 @@ pub(crate) struct Table {
     inv_coarse: f64,
     /// Shared by clones: components with the same profile read the same nodes.
     nodes: Arc<[Node; NODES]>,
+    /// The distance (m) from which every read gives the same node (the last nodes equal,
+    /// as in a room's well-mixed core); the table's end where the profile changes to the end.
+    flat_from: f64,
 }
 
 /// Nodes of a table: the fine grid's `TABLE_CELLS + 1` and the coarse grid's `TABLE_CELLS`.
@@ -373,8 +376,15 @@ impl Table {
         for node in &mut nodes {
             node.drift = if drift { node.drift * node.slope } else { 0.0 };
         }
+        // From the first of the equal nodes at the end on, a read gives the last node's
+        // values.
+        let last = nodes[nodes.len() - 1];
+        let first_flat = nodes.iter().rposition(|n| *n != last).map_or(0, |i| i + 1);
+        // One cell on, so that no read at the flat part's first node rounds into the cell
+        // before it.
+        let flat_from = ys[(first_flat + 1).min(ys.len() - 1)];
         let nodes = Arc::<[Node]>::from(nodes).try_into().expect("NODES nodes");
-        Self { split, inv_fine: 1.0 / fine, inv_coarse: 1.0 / coarse, nodes }
+        Self { split, inv_fine: 1.0 / fine, inv_coarse: 1.0 / coarse, nodes, flat_from }
     }
 
     /// The node at or below distance `y` (m) and the fraction of its cell up to `y`, clamped
@@ -389,6 +399,12 @@ impl Table {
         // drop the bounds checks.
         let (cell, i) = cell_of(s.min((NODES - 2) as f64));
         (i.min(NODES - 2), (s - cell).min(1.0))
+    }
+
+    /// The distance (m) from which every read of the table gives the same node, bit for bit
+    /// (a room's well-mixed core).
+    pub fn flat_from(&self) -> f64 {
+        self.flat_from
     }
 
     /// The steepest `|d sigma / dy|` of the table, 1/s.
@@ -689,6 +705,24 @@ impl FlowField {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_room_table_reads_the_same_from_its_flat_distance_on() {
+        // The indoor room (u* = 1 cm/s, blended into the core over 0.25 m): the profile's peak
+        // is a few centimetres out, so the core starts about 0.3 m from a wall.
+        let field = FlowField::new(&Flow::indoor_room(), [4.0, 3.0, 2.5], 1.5e-5, 0.1, true);
+        let table = &field.turbulence.as_ref().expect("a room's turbulence")[0].table;
+        let flat = table.flat_from();
+        assert!(flat > 0.25 && flat < 0.4, "{flat}");
+        let core = table.at(flat);
+        for y in [flat, flat * 1.001, 0.5, 1.0, 1.25, 10.0] {
+            assert_eq!(table.at(y), core, "{y}");
+        }
+        // Short of it the profile still changes.
+        assert_ne!(table.at(0.8 * flat).sigma, core.sigma);
+        assert_eq!(core.drift, 0.0);
+        assert_eq!(core.sigma, 0.05);
+    }
 
     #[test]
     fn wall_functions_have_their_textbook_limits() {

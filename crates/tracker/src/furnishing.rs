@@ -188,6 +188,21 @@ pub fn axis_distance(x: [f64; 3], axis: usize, length: f64, boxes: &[Furnishing]
 #[inline]
 #[must_use]
 pub fn nearest_surfaces(x: [f64; 3], size: [f64; 3], boxes: &[Furnishing]) -> [(f64, f64); 3] {
+    nearest_surfaces_within(x, size, boxes, f64::INFINITY)
+}
+
+/// [`nearest_surfaces`], with the boxes farther than `within` (m) from `x` left out: where
+/// what is read at the distances is the same beyond `within` (a room's well-mixed core,
+/// [`Table::flat_from`](crate::flow::Table::flat_from)), such a box changes no read, and the
+/// square root and the comparisons it takes are saved.
+#[inline]
+#[must_use]
+pub(crate) fn nearest_surfaces_within(
+    x: [f64; 3],
+    size: [f64; 3],
+    boxes: &[Furnishing],
+    within: f64,
+) -> [(f64, f64); 3] {
     let mut nearest = std::array::from_fn(|a| {
         let c = x[a];
         if c <= size[a] - c {
@@ -215,7 +230,7 @@ pub fn nearest_surfaces(x: [f64; 3], size: [f64; 3], boxes: &[Furnishing]) -> [(
         // be the nearer along some axis: a rounded root below `best` needs an exact one below
         // it, so `squared` at most `best * best` rounded.
         let squared = along[0] * along[0] + along[1] * along[1] + along[2] * along[2];
-        let farthest = nearest[0].0.max(nearest[1].0).max(nearest[2].0);
+        let farthest = nearest[0].0.max(nearest[1].0).max(nearest[2].0).min(within);
         if squared > farthest * farthest {
             continue;
         }
@@ -290,6 +305,44 @@ mod tests {
         assert!((d - 0.1).abs() < 1e-12 && sign == -1.0);
         // Without boxes: the nearer wall.
         assert_eq!(axis_distance([0.9, 1.2, 0.72], 0, 4.0, &[]), (0.9, 1.0));
+    }
+
+    #[test]
+    fn boxes_beyond_the_flat_distance_change_only_distances_beyond_it() {
+        // On a grid over the room: leaving out the boxes farther than 0.3 m changes an axis's
+        // nearest surface only where both it and the one kept are 0.3 m away or more.
+        let size = [4.0, 3.0, 2.5];
+        let boxes = [table(), Furnishing::new([3.0, 0.5, 0.001], [3.9, 2.5, 2.0])];
+        let within = 0.3;
+        let mut changed = 0;
+        for i in 0..40 {
+            for j in 0..30 {
+                for k in 0..25 {
+                    let x = [0.05 + 0.1 * f64::from(i), 0.05 + 0.1 * f64::from(j), 0.05 + 0.1 * f64::from(k)];
+                    if boxes.iter().any(|b| b.holds(x, 0.0)) {
+                        continue;
+                    }
+                    let (all, near) =
+                        (nearest_surfaces(x, size, &boxes), nearest_surfaces_within(x, size, &boxes, within));
+                    for a in 0..3 {
+                        if all[a] != near[a] {
+                            changed += 1;
+                            assert!(
+                                all[a].0 >= within && near[a].0 >= within,
+                                "{x:?} axis {a}: {:?} {:?}",
+                                all[a],
+                                near[a]
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(changed > 1000, "{changed}: the far boxes are left out somewhere");
+        assert_eq!(
+            nearest_surfaces_within([1.5, 1.2, 0.8], size, &boxes, f64::INFINITY),
+            nearest_surfaces([1.5, 1.2, 0.8], size, &boxes)
+        );
     }
 
     #[test]
