@@ -434,6 +434,31 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     assert_eq!(line.matches("]*").count(), unresolved.len(), "{line}");
     assert!(line.contains("[0]*"), "{line}");
     assert!(table.contains("* unresolved: no deposit event, or, where Lai & Nazaroff give at least 1e-7 m/s, a relative standard error or a share given up above 5 %"), "{table}");
+    // With 300 particles some figure the model asks to resolve is above 5 %: the table says
+    // how many particles would bring each size's within (its largest need, from the JSON's
+    // errors here, rounded up to two figures).
+    let mut said = 0;
+    for s in sizes {
+        let need = ["floor", "ceiling", "walls"]
+            .into_iter()
+            .filter_map(|key| {
+                let (m, model) = (&s[key], s["lai_nazaroff"][key].as_f64().unwrap());
+                if model < 1e-7 || m["events"].as_u64().unwrap() == 0 {
+                    return None;
+                }
+                let (value, error) = (m["value"].as_f64().unwrap(), m["error"].as_f64().unwrap());
+                (error > 0.05 * value).then(|| (300.0 * (error / (0.05 * value)).powi(2)).ceil())
+            })
+            .fold(0.0, f64::max);
+        if need > 0.0 {
+            let unit = 10f64.powi((need.log10().floor() as i32 - 1).max(0));
+            let rounded = (need / unit).ceil() * unit;
+            let d = s["diameter_um"].as_f64().unwrap();
+            assert!(table.contains(&format!("{rounded} particles at {d} um")), "{rounded} at {d} um: {table}");
+            said += 1;
+        }
+    }
+    assert!(said > 0 && table.contains("Errors above 5 % would take about"), "{table}");
 }
 
 /// A ventilated room read as a decay experiment: the decay curve per size (JSON, CSV file,

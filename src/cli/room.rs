@@ -88,6 +88,30 @@ fn unresolved(measured: &Measured, model: f64, given_up: f64) -> bool {
         || (model >= RESOLVABLE && (measured.error > RESOLVED_ERROR * measured.value || given_up > RESOLVED_ERROR))
 }
 
+/// The particles that would bring the `figures` (each a measured deposition velocity beside
+/// Lai & Nazaroff's) unresolved by their error alone within [`RESOLVED_ERROR`] (where the
+/// model gives at least [`RESOLVABLE`]), from a run of `particles`: a standard error falls
+/// as one over the square root of the particles. `None` where no figure is so unresolved
+/// (more particles cannot be told how far a figure without a deposit event is from
+/// resolved, nor lower a share given up).
+fn particles_to_resolve(particles: usize, figures: [(&Measured, f64); 3]) -> Option<usize> {
+    figures
+        .into_iter()
+        .filter(|(m, model)| *model >= RESOLVABLE && m.events > 0 && m.error > RESOLVED_ERROR * m.value)
+        .map(|(m, _)| (particles as f64 * (m.error / (RESOLVED_ERROR * m.value)).powi(2)).ceil() as usize)
+        .max()
+}
+
+/// `n` rounded up to two significant figures (12618 to 13000): what an estimate of a count
+/// can claim.
+fn two_figures_up(n: usize) -> usize {
+    let mut unit = 1;
+    while n / unit >= 100 {
+        unit *= 10;
+    }
+    n.div_ceil(unit) * unit
+}
+
 /// The note under a study's table: what its numbers mean.
 pub const ERROR_NOTE: &str = "+- is one standard error of the estimate over the run's randomness (delta method over \
 the injected particles); [n] deposit events it rests on; with none, < the 95 % upper bound. \
@@ -690,6 +714,22 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     RESOLVABLE,
                     100.0 * RESOLVED_ERROR
                 );
+                let more: Vec<String> = rows
+                    .iter()
+                    .filter_map(|r| {
+                        let model = &r.lai_nazaroff;
+                        let figures = [(&r.floor, model.floor), (&r.ceiling, model.ceiling), (&r.walls, model.walls)];
+                        particles_to_resolve(r.particles, figures)
+                            .map(|n| format!("{} particles at {} um", two_figures_up(n), r.diameter_um))
+                    })
+                    .collect();
+                if !more.is_empty() {
+                    out!(
+                        "  Errors above {} % would take about {} (an error falls as one over the square root of the particles; particles.max_count in a scene file).",
+                        100.0 * RESOLVED_ERROR,
+                        more.join(", ")
+                    );
+                }
             }
             out!(
                 "Averages from {} s to {} s; {steps} particle-steps tracked (excursions not counted) in {seconds:.1} s.",
@@ -1082,5 +1122,22 @@ mod tests {
         assert!(unresolved(&m(0.0, 0), 1e-9, 0.0));
         // Below the model's 1e-7 m/s neither the error nor the given-up share is asked.
         assert!(!unresolved(&m(6e-7, 100), 1e-8, 0.06));
+    }
+
+    /// 8000 particles left the walls at 10 % and the ceiling at 7.4 %: four times the
+    /// particles halve the walls' error, so 32000 resolve both. A figure within 5 %, one
+    /// without an event and one the model does not ask to resolve set nothing.
+    #[test]
+    fn the_particles_to_resolve_a_figure_grow_with_its_error_squared() {
+        let m = |error: f64, events| Measured { value: 1e-6, error, events, upper_bound: None };
+        let (walls, ceiling, floor) = (m(1e-7, 900), m(7.4e-8, 300), m(4e-8, 5000));
+        assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&ceiling, 1e-6), (&walls, 1e-6)]), Some(32000));
+        assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&ceiling, 1e-6), (&walls, 1e-8)]), Some(17524));
+        assert_eq!(
+            [two_figures_up(17524), two_figures_up(32000), two_figures_up(99), two_figures_up(101)],
+            [18000, 32000, 99, 110]
+        );
+        let none = m(0.0, 0);
+        assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&none, 1e-6), (&walls, 1e-8)]), None);
     }
 }
