@@ -453,7 +453,7 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
         if need > 0.0 {
             let unit = 10f64.powi((need.log10().floor() as i32 - 1).max(0));
             let rounded = (need / unit).ceil() * unit;
-            let d = s["diameter_um"].as_f64().unwrap();
+            let d = (s["diameter_um"].as_f64().unwrap() * 1e4).round() / 1e4;
             assert!(table.contains(&format!("{rounded} particles at {d} um")), "{rounded} at {d} um: {table}");
             said += 1;
         }

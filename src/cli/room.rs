@@ -719,8 +719,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     .filter_map(|r| {
                         let model = &r.lai_nazaroff;
                         let figures = [(&r.floor, model.floor), (&r.ceiling, model.ceiling), (&r.walls, model.walls)];
-                        particles_to_resolve(r.particles, figures)
-                            .map(|n| format!("{} particles at {} um", two_figures_up(n), r.diameter_um))
+                        particles_to_resolve(r.particles, figures).map(|n| {
+                            format!("{} particles at {} um", two_figures_up(n), (r.diameter_um * 1e4).round() / 1e4)
+                        })
                     })
                     .collect();
                 if !more.is_empty() {
