@@ -71,34 +71,42 @@ impl Measured {
     }
 }
 
-/// A surface's figure is resolved when its relative standard error is at most this...
-const RESOLVED_ERROR: f64 = 0.05;
+/// A surface's figure is resolved when its relative standard error is at most this (the
+/// study's target)...
+const RESOLVED_ERROR: f64 = studies::TARGET_ERROR;
 /// ...where Lai & Nazaroff give at least this deposition velocity (m/s); below it the
 /// relative error is not asked of a figure (a few events over a whole run).
-const RESOLVABLE: f64 = 1e-7;
+const RESOLVABLE: f64 = studies::RESOLVED_FROM;
 
 /// Whether a surface's deposition velocity `measured` is unresolved beside the model's `model`
 /// (m/s), its run's excursions having given up the share `given_up` of their weight at their
 /// longest duration: no deposit event; or, where the model gives at least [`RESOLVABLE`], a
-/// relative standard error above [`RESOLVED_ERROR`], or a given-up share above it (what
-/// giving them up may have missed, at most that share, could then exceed a resolved figure's
-/// error).
+/// relative standard error above [`RESOLVED_ERROR`] ([`too_uncertain`]), or a given-up share
+/// above it (what giving them up may have missed, at most that share, could then exceed a
+/// resolved figure's error).
 fn unresolved(measured: &Measured, model: f64, given_up: f64) -> bool {
-    measured.events == 0
-        || (model >= RESOLVABLE && (measured.error > RESOLVED_ERROR * measured.value || given_up > RESOLVED_ERROR))
+    measured.events == 0 || too_uncertain(measured, model) || (model >= RESOLVABLE && given_up > RESOLVED_ERROR)
+}
+
+/// Whether `measured`, with deposit events, has a relative standard error above
+/// [`RESOLVED_ERROR`] where the model `model` (m/s) asks it ([`RESOLVABLE`]).
+fn too_uncertain(measured: &Measured, model: f64) -> bool {
+    model >= RESOLVABLE && measured.events > 0 && measured.error > RESOLVED_ERROR * measured.value
 }
 
 /// The particles that would bring the `figures` (each a measured deposition velocity beside
-/// Lai & Nazaroff's) unresolved by their error alone within [`RESOLVED_ERROR`] (where the
-/// model gives at least [`RESOLVABLE`]), from a run of `particles`: a standard error falls
-/// as one over the square root of the particles. `None` where no figure is so unresolved
-/// (more particles cannot be told how far a figure without a deposit event is from
-/// resolved, nor lower a share given up).
+/// Lai & Nazaroff's) that are [`too_uncertain`] within [`RESOLVED_ERROR`], from a run of
+/// `particles`: as the study itself would run more ([`studies::particles_for`]). `None` where
+/// no figure is so (more particles cannot be told how far a figure without a deposit event is
+/// from resolved, nor lower a share given up).
 fn particles_to_resolve(particles: usize, figures: [(&Measured, f64); 3]) -> Option<usize> {
     figures
         .into_iter()
-        .filter(|(m, model)| *model >= RESOLVABLE && m.events > 0 && m.error > RESOLVED_ERROR * m.value)
-        .map(|(m, _)| (particles as f64 * (m.error / (RESOLVED_ERROR * m.value)).powi(2)).ceil() as usize)
+        .filter(|(m, model)| too_uncertain(m, *model))
+        .map(|(m, _)| {
+            let estimate = Estimate { value: m.value, error: m.error, events: m.events, upper_bound: f64::NAN };
+            studies::particles_for(&estimate, particles, RESOLVED_ERROR)
+        })
         .max()
 }
 
@@ -1126,17 +1134,18 @@ mod tests {
     }
 
     /// 8000 particles left the walls at 10 % and the ceiling at 7.4 %: four times the
-    /// particles halve the walls' error, so 32000 resolve both. A figure within 5 %, one
-    /// without an event and one the model does not ask to resolve set nothing.
+    /// particles halve the walls' error, so 32000, with the study's margin of 1.15 36800,
+    /// resolve both; the ceiling alone 8000 x 1.48^2 x 1.15 = 20151.7. A figure within 5 %,
+    /// one without an event and one the model does not ask to resolve set nothing.
     #[test]
     fn the_particles_to_resolve_a_figure_grow_with_its_error_squared() {
         let m = |error: f64, events| Measured { value: 1e-6, error, events, upper_bound: None };
         let (walls, ceiling, floor) = (m(1e-7, 900), m(7.4e-8, 300), m(4e-8, 5000));
-        assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&ceiling, 1e-6), (&walls, 1e-6)]), Some(32000));
-        assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&ceiling, 1e-6), (&walls, 1e-8)]), Some(17524));
+        assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&ceiling, 1e-6), (&walls, 1e-6)]), Some(36800));
+        assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&ceiling, 1e-6), (&walls, 1e-8)]), Some(20152));
         assert_eq!(
-            [two_figures_up(17524), two_figures_up(32000), two_figures_up(99), two_figures_up(101)],
-            [18000, 32000, 99, 110]
+            [two_figures_up(20152), two_figures_up(36800), two_figures_up(99), two_figures_up(101)],
+            [21000, 37000, 99, 110]
         );
         let none = m(0.0, 0);
         assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&none, 1e-6), (&walls, 1e-8)]), None);

@@ -600,6 +600,10 @@ pub(crate) struct FlowField {
     /// `d(distance)/dz`), and its own `zeta` with the rest of its variance, `u_rms sqrt(1 -
     /// rho_uv^2)` (see [`stress_correlation`]).
     pub stress_coupling: Option<Table>,
+    /// The distance (m) from which all three fluctuating components read the same, bit for
+    /// bit, whatever the distance ([`Table::flat_from`]: a room's well-mixed core); infinite
+    /// without turbulence.
+    pub turbulence_flat_from: f64,
 }
 
 impl FlowField {
@@ -629,6 +633,7 @@ impl FlowField {
             tangential: false,
             intermittent: None,
             stress_coupling: None,
+            turbulence_flat_from: f64::INFINITY,
         };
         match *flow {
             Flow::Still => {}
@@ -697,6 +702,9 @@ impl FlowField {
                 field.turbulence = Some([comp(0), comp(1), comp(2)]);
                 field.tangential = true;
             }
+        }
+        if let Some(turbulence) = &field.turbulence {
+            field.turbulence_flat_from = turbulence.iter().map(|c| c.table.flat_from()).fold(0.0, f64::max);
         }
         field
     }

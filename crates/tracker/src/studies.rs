@@ -639,8 +639,10 @@ impl ChannelStudy {
 
 /// The particles an estimate from `n` of them needs for a relative standard error of
 /// `target`, as its error falls with `1 / sqrt(n)`, times [`TARGET_MARGIN`]; `usize::MAX`
-/// with no deposit to go by.
-fn particles_for(e: &Estimate, n: usize, target: f64) -> usize {
+/// with no deposit to go by. What a room study runs more particles by, and what `depo room`
+/// tells of a figure left above its target at `max_count`.
+#[must_use]
+pub fn particles_for(e: &Estimate, n: usize, target: f64) -> usize {
     if e.events == 0 || e.value <= 0.0 {
         return usize::MAX;
     }

@@ -64,8 +64,7 @@ pub(super) fn furnished_fluid_velocity(
     if let Some(turb) = &field.turbulence {
         let at = x.to_array();
         // A box beyond where the tables are flat changes no read.
-        let flat = turb[0].table.flat_from().max(turb[1].table.flat_from()).max(turb[2].table.flat_from());
-        let nearest = nearest_surfaces_within(at, size, boxes, flat);
+        let nearest = nearest_surfaces_within(at, size, boxes, field.turbulence_flat_from);
         let ds = [nearest[turb[0].axis], nearest[turb[1].axis], nearest[turb[2].axis]];
         let nodes = [turb[0].table.at(ds[0].0), turb[1].table.at(ds[1].0), turb[2].table.at(ds[2].0)];
         // The tangential factors from the room's walls alone: the distance to the nearest
