@@ -350,7 +350,8 @@ impl Run {
     /// [`delta_error`] of the differences of the contributions. `None` without exposure.
     #[must_use]
     pub fn loss_rate_influences(&self) -> Option<Vec<f64>> {
-        let deposits = |p: &ParticleTally| p.deposited.iter().sum::<f64>();
+        // Every surface's, the furnishings' faces' too, as the loss rate counts them.
+        let deposits = ParticleTally::deposited_total;
         let exposure: f64 = self.particles.iter().map(|p| p.exposure).sum();
         if exposure.is_nan() || exposure <= 0.0 {
             return None;

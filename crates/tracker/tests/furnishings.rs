@@ -263,6 +263,21 @@ fn excursions_agree_with_plain_tracking_at_a_box() {
     assert!(z(a, b) < 3.0, "beta: plain {a:?}, excursions {b:?}");
 }
 
+/// The loss rate's per-particle influences (what the decay fit's comparison pairs with)
+/// count a box's deposits as the loss rate does: they sum to zero and give its error, with
+/// a good share of the deposits on the table's top.
+#[test]
+fn the_loss_rate_s_influences_count_the_furnishings() {
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.05, 60.0);
+    scene.furnishings = vec![Furnishing::new([0.2, 0.2, 0.3], [0.8, 0.8, 0.4])];
+    let result = run(&scene, &mono(2000, 10e-6)).unwrap();
+    let on_top = result.balance().deposited[6 + 1];
+    assert!(on_top > 100, "{on_top} on the top");
+    let (influences, beta) = (result.loss_rate_influences().unwrap(), result.loss_rate());
+    assert!(influences.iter().sum::<f64>().abs() < 1e-12 * beta.value);
+    assert!((depo_tracker::delta_error(&influences) / beta.error - 1.0).abs() < 1e-12, "{beta:?}");
+}
+
 /// A furnished, ventilated room study with excursions: per furnishing its faces' figures, the
 /// release's exact balance with its part on the furnishings, and the surface-to-volume ratio.
 #[test]
