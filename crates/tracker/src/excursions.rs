@@ -78,6 +78,15 @@
 //! channel study's figures); the first-order scheme in coarse steps was 40 % off and is not
 //! offered. Scenes with furnishings or openings take the scene's step throughout.
 //!
+//! ## Sampling by class of crossing
+//! [`Excursions::class_sampling`] scales the excursions per crossing by the class of the
+//! surface nearest where the crossing ends ([`crossing_class`]: floor, ceiling, walls,
+//! furnishings); each excursion weighs one over its own sampling, so the estimate is the
+//! same in expectation, and only the spread of each class's deposits changes. A room study
+//! lowers it where its figures have room to spare ([`crate::allocation`]). Each particle's
+//! [`ParticleTally`](crate::ParticleTally) counts its excursions' steps and deposits by
+//! class of crossing, which is what the study decides from.
+//!
 //! ## Estimates and their errors
 //! A deposition velocity is a ratio of deposits (an injected particle's excursions' weighted
 //! deposits) to exposure (its airborne time in the window), summed over the injected
@@ -97,6 +106,14 @@ pub struct Excursions {
     /// whole part, and one more with the probability of its fraction). Each weighs
     /// `1 / sampling`.
     pub sampling: f64,
+    /// [`Excursions::sampling`]'s multiplier for a crossing into the layer of each class of
+    /// surface ([`crossing_class`]: the floor, the ceiling, the walls, the furnishings' faces),
+    /// the surface nearest where the crossing ends: a study runs fewer excursions where its
+    /// figures are resolved with room to spare (see
+    /// [`RoomStudy`](crate::studies::RoomStudy)). Each excursion weighs one over its own
+    /// sampling, so any multipliers give the same expected deposits. 1 for every class in
+    /// [`Excursions::in_wall_units`].
+    pub class_sampling: [f64; CROSSING_CLASSES],
     /// Longest an excursion is followed, s; beyond it, it counts as having left the layer.
     pub max_duration: f64,
     /// Splitting toward the wall within the layer.
@@ -107,6 +124,21 @@ pub struct Excursions {
     /// The excursions' branches step this many times the scene's step where that is safe
     /// (see [Coarse steps](#coarse-steps)); 1: always the scene's step.
     pub coarse_factor: u32,
+}
+
+/// The classes of surface whose crossings [`Excursions::class_sampling`] samples apart.
+pub const CROSSING_CLASSES: usize = 4;
+
+/// The class of surface `id` ([`Excursions::class_sampling`]): 0 for the floor (a channel's
+/// lower wall), 1 for the ceiling (its upper wall), 2 for the room's four walls, 3 for a
+/// furnishing's face (see [`crate::geometry`] for the ids).
+#[must_use]
+pub fn crossing_class(id: usize) -> usize {
+    match id {
+        0 | 1 => id,
+        2..=5 => 2,
+        _ => 3,
+    }
 }
 
 /// Strong sweeps caught on their way to the layer, in a channel (see the module docs): a
@@ -137,6 +169,7 @@ impl Excursions {
         Self {
             layer: 30.0 * unit,
             sampling,
+            class_sampling: [1.0; CROSSING_CLASSES],
             max_duration: max_duration * unit / friction_velocity,
             splitting: Splitting::geometric(15.0 * unit, inner * unit, 2.0, 2),
             sweeps: None,
@@ -151,6 +184,15 @@ impl Excursions {
         }
         if !(self.sampling > 0.0 && self.sampling <= 1e6) {
             return Err(SceneError::new("excursions.sampling", self.sampling, "must be in (0, 1e6]"));
+        }
+        for &m in &self.class_sampling {
+            if !(m > 0.0 && self.sampling * m <= 1e6) {
+                return Err(SceneError::new(
+                    "excursions.class_sampling",
+                    m,
+                    "must be positive, with sampling times it at most 1e6",
+                ));
+            }
         }
         if !(self.max_duration.is_finite() && self.max_duration > 0.0) {
             return Err(SceneError::new("excursions.max_duration", self.max_duration, "must be finite and positive"));

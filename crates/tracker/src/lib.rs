@@ -32,6 +32,8 @@
 //! - [`excursions`]: near-wall excursions, the variance reduction for rare deposition: an
 //!   unbiased estimate of the steady deposition rate from split copies of the particles that
 //!   enter a near-wall layer (in `track` as `excursions`).
+//! - [`allocation`]: how many excursions a study starts per class of crossing (floor,
+//!   ceiling, walls, furnishings), fewer where its figures have room to spare.
 //! - [`convergence`]: run time against error of the integrators over the step size.
 //! - [`efficiency`]: run time against statistical error of the studies' variance reduction,
 //!   beside the plain tracking it replaces.
@@ -60,6 +62,7 @@
 //! ```
 
 pub mod air;
+pub mod allocation;
 pub mod convergence;
 pub mod correlations;
 pub mod decay;

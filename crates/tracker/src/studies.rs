@@ -18,9 +18,10 @@
 //! near-wall layers as at the walls' (their gap is to the nearest wall or box).
 
 use crate::air::Air;
+use crate::allocation::{self, Figure};
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
 use crate::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
-use crate::excursions::{Excursions, Sweeps};
+use crate::excursions::{Excursions, Sweeps, CROSSING_CLASSES};
 use crate::filtration::Filtration;
 use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
@@ -40,9 +41,14 @@ pub struct RoomStudy {
     /// The relative standard error to resolve each size's figures to: `beta`, and the
     /// deposition velocity onto each surface where Lai & Nazaroff's model gives at least
     /// [`RESOLVED_FROM`] (the figures a room study is read for). When the first `count`
-    /// particles leave one of them less resolved, as many more are run (and pooled with them)
-    /// as its error, falling as `1 / sqrt(n)`, says it needs, times [`TARGET_MARGIN`], up
-    /// to `max_count` in all. `None`: `count` particles, whatever the errors.
+    /// particles leave one of them less resolved, more are run (and pooled with them), in up
+    /// to three rounds of at most four times the particles run, until every figure is within
+    /// the target or `max_count` particles have run: each round as many as the least
+    /// resolved figure's error, falling as `1 / sqrt(n)`, says it needs, times
+    /// [`TARGET_MARGIN`] (or a few more where that lets the excursions be cut elsewhere).
+    /// With excursions, those particles start fewer excursions per crossing where the
+    /// figures they resolve have room to spare ([`crate::allocation`]). `None`: `count`
+    /// particles, whatever the errors.
     pub target_error: Option<f64>,
     /// The most particles per diameter with `target_error`.
     pub max_count: usize,
@@ -132,6 +138,17 @@ pub const RESOLVED_FROM: f64 = 1e-7;
 /// The relative standard error the default studies resolve their figures to
 /// ([`RoomStudy::target_error`], [`ChannelStudy::target_error`]).
 pub const TARGET_ERROR: f64 = 0.05;
+
+/// The most rounds in which a room study runs more particles towards its `target_error`.
+const ROUNDS: usize = 3;
+
+/// The most a round of a room study multiplies the particles run.
+const ROUND_GROWTH: usize = 4;
+
+/// Whether estimate `e` has a deposit and a relative standard error of at most `target`.
+fn resolved(e: &Estimate, target: f64) -> bool {
+    e.events > 0 && e.error <= target * e.value
+}
 
 /// How many more particles than the first ones' errors say a study runs to reach its
 /// `target_error`: a margin for the errors' own spread.
@@ -326,20 +343,44 @@ fn total(tallies: &[WallTally]) -> WallTally {
 }
 
 impl RoomStudy {
+    /// The figures a size must resolve in `run`: `beta`, and each orientation of the room's
+    /// walls where Lai & Nazaroff give at least [`RESOLVED_FROM`]; each with the
+    /// [`crossing_class`](crate::excursions::crossing_class)es of the surfaces it counts.
+    fn resolved_figures(run: &Run, model: &LaiNazaroff) -> Vec<(Estimate, [bool; CROSSING_CLASSES])> {
+        let mut figures = vec![(run.loss_rate(), [true; CROSSING_CLASSES])];
+        for (orientation, reference, class) in [
+            (Orientation::Floor, model.floor, 0),
+            (Orientation::Ceiling, model.ceiling, 1),
+            (Orientation::Wall, model.wall, 2),
+        ] {
+            if reference >= RESOLVED_FROM {
+                let onto = std::array::from_fn(|c| c == class);
+                figures.push((run.deposition_velocity(&run.walls_facing(orientation)), onto));
+            }
+        }
+        figures
+    }
+
     /// The particles a size needs for its figures to reach `target` ([`RoomStudy::target_error`]),
     /// from the errors of `first`'s: at least the particles already run, at most `max_count`.
     fn needed(&self, first: &Run, model: &LaiNazaroff, target: f64) -> usize {
         let n = first.records.len();
-        let mut figures = vec![first.loss_rate()];
-        for (orientation, reference) in
-            [(Orientation::Floor, model.floor), (Orientation::Ceiling, model.ceiling), (Orientation::Wall, model.wall)]
-        {
-            if reference >= RESOLVED_FROM {
-                figures.push(first.deposition_velocity(&first.walls_facing(orientation)));
-            }
-        }
-        let needed = figures.iter().map(|e| particles_for(e, n, target)).max().unwrap_or(n);
+        let figures = Self::resolved_figures(first, model);
+        let needed = figures.iter().map(|(e, _)| particles_for(e, n, target)).max().unwrap_or(n);
         needed.clamp(n, self.max_count.max(n))
+    }
+
+    /// The particles to run for `target` (about `needed`, at most `max_count`) and the
+    /// sampling multipliers per class of crossing for those after `first`
+    /// ([`allocation::plan`]): from the first particles' figures and steps, with
+    /// [`TARGET_MARGIN`] for the spread of their errors.
+    fn plan(&self, first: &Run, model: &LaiNazaroff, needed: usize, target: f64) -> (usize, [f64; CROSSING_CLASSES]) {
+        let figures: Vec<_> =
+            Self::resolved_figures(first, model).iter().map(|(e, onto)| Figure::of(first, e, *onto)).collect();
+        let tracked = first.records.iter().map(|r| r.steps as f64).sum();
+        let steps = std::array::from_fn(|c| first.particles.iter().map(|p| p.class_steps[c] as f64).sum());
+        let n = first.records.len();
+        allocation::plan(&figures, (tracked, steps), n, (needed, self.max_count.max(n)), (target, TARGET_MARGIN))
     }
 
     /// Runs every size; `progress` is told after each.
@@ -381,9 +422,24 @@ impl RoomStudy {
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             let mut result = run(&scene, &injection).map_err(for_diameters)?;
             if let Some(target) = self.target_error {
-                let needed = self.needed(&result, &model, target);
-                if needed > self.count {
-                    result = run_more(&scene, &Injection { count: needed, ..injection }, result)?;
+                // In rounds, each to at most `ROUND_GROWTH` times the particles run: the errors
+                // of the first particles, which rest on fewer deposits, are rough, and later
+                // rounds stop where every figure is resolved rather than at what those said.
+                let mut have = self.count;
+                for round in 0..ROUNDS {
+                    if round > 0 && Self::resolved_figures(&result, &model).iter().all(|(e, _)| resolved(e, target)) {
+                        break;
+                    }
+                    let needed = self.needed(&result, &model, target);
+                    if needed <= have {
+                        break;
+                    }
+                    let (planned, sampling) = self.plan(&result, &model, needed, target);
+                    if let Some(excursions) = scene.excursions.as_mut() {
+                        excursions.class_sampling = sampling;
+                    }
+                    have = planned.min(have * ROUND_GROWTH);
+                    result = run_more(&scene, &Injection { count: have, ..injection }, result)?;
                 }
             }
             let v = |o| result.deposition_velocity(&result.walls_facing(o));

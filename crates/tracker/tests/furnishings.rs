@@ -238,29 +238,27 @@ fn box_faces_take_the_walls_deposition_velocity() {
 /// combined standard errors, with excursions' deposits on every face of the box.
 #[test]
 fn excursions_agree_with_plain_tracking_at_a_box() {
-    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.05, 600.0);
-    scene.flow = Flow::indoor_room();
-    scene.brownian = true;
-    scene.average_from = 60.0;
-    scene.furnishings = vec![Furnishing::new([0.3, 0.3, 0.3], [0.7, 0.7, 0.7])];
-    let injection = mono(400, 0.01e-6);
-    let plain = run(&scene, &Injection { count: 4000, ..injection }).unwrap();
-    let mut split = scene.clone();
-    split.seed += 1;
-    let nu = split.air.kinematic_viscosity();
-    let excursions = depo_tracker::Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0);
-    split.excursions = Some(excursions.calibrated(&split, &injection, 100, 1, 8).unwrap().0);
-    let split = run(&split, &injection).unwrap();
-    let faces = plain.furnishing_faces(0);
-    for f in &faces {
-        assert!(split.particles.iter().any(|p| p.events_on(*f) > 0), "face {f}: no excursion deposit");
+    excursions_agree_with_plain_tracking_in_a_box_room([1.0; 4]);
+}
+
+/// Fewer or more excursions per crossing by the class of surface crossed (the floor's
+/// halved, the ceiling's doubled, the walls' quartered, the box's halved), each weighing one
+/// over its own sampling, keep the estimate unbiased; and the excursions' tallies by class of
+/// crossing add up to the particle's deposits, with every class's excursions stepped.
+#[test]
+fn excursions_sampled_by_class_of_crossing_agree_with_plain_tracking() {
+    let split = excursions_agree_with_plain_tracking_in_a_box_room([0.5, 2.0, 0.25, 0.5]);
+    for p in &split.particles {
+        let by_class: f64 = p.class_deposits.iter().flatten().sum();
+        assert!((by_class - p.deposited_total()).abs() <= 1e-12 * p.deposited_total(), "{p:?}");
     }
-    let z = |a: depo_tracker::Estimate, b: depo_tracker::Estimate| (a.value - b.value).abs() / a.error.hypot(b.error);
-    let (a, b) = (plain.deposition_velocity(&faces), split.deposition_velocity(&faces));
-    assert!(a.events >= 40 && b.error < 0.15 * b.value, "plain {a:?}, excursions {b:?}");
-    assert!(z(a, b) < 3.0, "box faces: plain {a:?}, excursions {b:?}");
-    let (a, b) = (plain.loss_rate(), split.loss_rate());
-    assert!(z(a, b) < 3.0, "beta: plain {a:?}, excursions {b:?}");
+    for c in 0..4 {
+        assert!(split.particles.iter().any(|p| p.class_steps[c] > 0), "class {c}: no steps");
+        assert!(
+            split.particles.iter().any(|p| p.class_deposits[c][c] > 0.0),
+            "class {c}: no deposit on its own surface"
+        );
+    }
 }
 
 /// The loss rate's per-particle influences (what the decay fit's comparison pairs with)
@@ -276,6 +274,37 @@ fn the_loss_rate_s_influences_count_the_furnishings() {
     let (influences, beta) = (result.loss_rate_influences().unwrap(), result.loss_rate());
     assert!(influences.iter().sum::<f64>().abs() < 1e-12 * beta.value);
     assert!((depo_tracker::delta_error(&influences) / beta.error - 1.0).abs() < 1e-12, "{beta:?}");
+}
+
+/// Plain tracking of ultrafine particles in a 1 m room around a box, against excursions with
+/// `class_sampling` ([`depo_tracker::Excursions::class_sampling`]): the box's faces and the
+/// loss rate within 3 combined standard errors. The excursions' run.
+fn excursions_agree_with_plain_tracking_in_a_box_room(class_sampling: [f64; 4]) -> depo_tracker::Run {
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.05, 600.0);
+    scene.flow = Flow::indoor_room();
+    scene.brownian = true;
+    scene.average_from = 60.0;
+    scene.furnishings = vec![Furnishing::new([0.3, 0.3, 0.3], [0.7, 0.7, 0.7])];
+    let injection = mono(400, 0.01e-6);
+    let plain = run(&scene, &Injection { count: 4000, ..injection }).unwrap();
+    let mut split = scene.clone();
+    split.seed += 1;
+    let nu = split.air.kinematic_viscosity();
+    let excursions = depo_tracker::Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0);
+    let calibrated = excursions.calibrated(&split, &injection, 100, 1, 8).unwrap().0;
+    split.excursions = Some(depo_tracker::Excursions { class_sampling, ..calibrated });
+    let split = run(&split, &injection).unwrap();
+    let faces = plain.furnishing_faces(0);
+    for f in &faces {
+        assert!(split.particles.iter().any(|p| p.events_on(*f) > 0), "face {f}: no excursion deposit");
+    }
+    let z = |a: depo_tracker::Estimate, b: depo_tracker::Estimate| (a.value - b.value).abs() / a.error.hypot(b.error);
+    let (a, b) = (plain.deposition_velocity(&faces), split.deposition_velocity(&faces));
+    assert!(a.events >= 40 && b.error < 0.15 * b.value, "plain {a:?}, excursions {b:?}");
+    assert!(z(a, b) < 3.0, "box faces: plain {a:?}, excursions {b:?}");
+    let (a, b) = (plain.loss_rate(), split.loss_rate());
+    assert!(z(a, b) < 3.0, "beta: plain {a:?}, excursions {b:?}");
+    split
 }
 
 /// A furnished, ventilated room study with excursions: per furnishing its faces' figures, the

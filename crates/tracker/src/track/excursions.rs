@@ -9,7 +9,7 @@ use glam::DVec3;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::RngExt;
 
-use crate::excursions::{Excursions, MAX_LEVELS};
+use crate::excursions::{crossing_class, Excursions, CROSSING_CLASSES, MAX_LEVELS};
 use crate::furnishing::Furnishing;
 use crate::noise::{branch_rng, particle_rng, Normals};
 
@@ -44,6 +44,13 @@ pub struct ParticleTally {
     pub arrivals: [f64; MAX_LEVELS],
     /// Branches that arrived into each level (unweighted).
     pub branches: [u64; MAX_LEVELS],
+    /// The excursions' steps by the [`crossing_class`] of the crossing that started them:
+    /// where a study's excursions spend their work.
+    pub class_steps: [u64; CROSSING_CLASSES],
+    /// The deposits of `deposited` and `on_furnishings` by the [`crossing_class`] of the
+    /// crossing whose excursion made them (first index) and of the surface they landed on
+    /// (second index): what each class of crossing adds to each figure, and to its spread.
+    pub class_deposits: [[f64; CROSSING_CLASSES]; CROSSING_CLASSES],
 }
 
 impl Default for ParticleTally {
@@ -57,6 +64,8 @@ impl Default for ParticleTally {
             truncated: 0.0,
             arrivals: [0.0; MAX_LEVELS],
             branches: [0; MAX_LEVELS],
+            class_steps: [0; CROSSING_CLASSES],
+            class_deposits: [[0.0; CROSSING_CLASSES]; CROSSING_CLASSES],
         }
     }
 }
@@ -218,6 +227,25 @@ fn free_flight_gap(p: &Prepared<'_>, flyer: &Flyer) -> f64 {
     gap
 }
 
+/// The [`crossing_class`] of the surface nearest `x`: the nearest of the room's (or a
+/// channel's) walls, or a furnishing's face where a box is nearer.
+fn nearest_class(p: &Prepared<'_>, x: DVec3) -> usize {
+    let mut nearest = (2, f64::INFINITY);
+    for w in &p.walls {
+        let gap = if w.upper { w.position - x[w.axis] } else { x[w.axis] - w.position };
+        if gap < nearest.1 {
+            nearest = (crossing_class(w.id), gap);
+        }
+    }
+    for b in p.boxes {
+        let outside = |a: usize| (b.low[a] - x[a]).max(x[a] - b.high[a]).max(0.0);
+        if (0..3).map(|a| outside(a).powi(2)).sum::<f64>() < nearest.1 * nearest.1 {
+            return crossing_class(p.walls.len());
+        }
+    }
+    nearest.0
+}
+
 /// Where a particle stands against the excursions' region ([`Excursions::sweeps`]): inside
 /// (within the layer, or in a strong sweep), outside, or between a sweep's two thresholds,
 /// where it stays as it was.
@@ -293,10 +321,12 @@ pub(crate) fn run_with_excursions<
                 };
                 let t1 = t0 + dt;
                 if entered && !inside && t1 >= window[0] && t1 <= window[1] {
-                    // Entered by a sweep (outside the layer) or across the layer.
+                    // Entered by a sweep (outside the layer) or across the layer; the
+                    // crossing's class by the surface nearest its end.
+                    let class = nearest_class(p, flyer.x);
                     let sampling = match &excursions.sweeps {
                         Some(s) if wall_gap(p, flyer.x, flyer.body.contact) >= excursions.layer => s.sampling,
-                        _ => excursions.sampling,
+                        _ => excursions.sampling * excursions.class_sampling[class],
                     };
                     // `sampling` excursions per entry on average: its whole part, and one more
                     // with the probability of its fraction.
@@ -305,7 +335,7 @@ pub(crate) fn run_with_excursions<
                         let streams = (p.scene.seed, id, &mut copies);
                         excursion::<BROWN, TURB, FINITE_RE, EULER, LIFT>(
                             p,
-                            (excursions, sampling),
+                            (excursions, sampling, class),
                             &flyer,
                             coarse.as_mut(),
                             n + 1,
@@ -353,7 +383,7 @@ struct Branch {
 #[allow(clippy::too_many_arguments)]
 fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const EULER: bool, const LIFT: bool>(
     p: &Prepared<'_>,
-    (excursions, sampling): (&Excursions, f64),
+    (excursions, sampling, class): (&Excursions, f64, usize),
     start: &Flyer,
     mut coarse: Option<&mut Coarse<'_, '_>>,
     next: usize,
@@ -403,9 +433,11 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
             };
             n += 1;
             clock += ticks;
+            stats.class_steps[class] += 1;
             match step {
                 Step::Left(Fate::Deposited(w), ..) => {
                     stats.add_deposit(w, weight);
+                    stats.class_deposits[class][crossing_class(w)] += weight;
                     break;
                 }
                 Step::Left(..) => break,
