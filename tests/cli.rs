@@ -376,6 +376,9 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     // The floor law's tallies (of the tracked particles; excursions have their own): every
     // deposit of the run came through a capture or a resting bounce.
     assert_eq!(ten["method"], "excursions");
+    // No target error, no more particles: no class of crossing was cut.
+    let uncut = serde_json::json!({"floor": 1.0, "ceiling": 1.0, "walls": 1.0, "furnishings": 1.0});
+    assert_eq!(ten["class_sampling"], uncut, "{ten}");
     let tally = &ten["wall_tally"];
     let floor = ten["deposited"]["floor"].as_u64().unwrap();
     assert!(tally["captures"].as_u64().unwrap() + tally["resting"].as_u64().unwrap() >= floor, "{tally}");

@@ -163,6 +163,16 @@ impl From<WallTally> for Tally {
     }
 }
 
+/// The excursions per crossing of each class of surface, as multiples of the study's three
+/// ([`depo::tracker::Excursions::class_sampling`]).
+#[derive(Serialize)]
+struct ClassSampling {
+    floor: f64,
+    ceiling: f64,
+    walls: f64,
+    furnishings: f64,
+}
+
 #[derive(Serialize)]
 struct Row {
     diameter_um: f64,
@@ -190,6 +200,10 @@ struct Row {
     /// With excursions: that longest duration, s.
     #[serde(skip_serializing_if = "Option::is_none")]
     longest_excursion_s: Option<f64>,
+    /// With excursions: the multipliers of their sampling per class of crossing that the
+    /// particles after the first ran with.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    class_sampling: Option<ClassSampling>,
     wall_tally: Tally,
     deposited: Deposited,
     /// Where the released particles are at the end: per surface, exhausted, airborne.
@@ -394,6 +408,12 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
         method: if p.excursions.is_some() { "excursions" } else { "plain" },
         excursions_truncated: p.excursions,
         longest_excursion_s: p.longest_excursion,
+        class_sampling: p.class_sampling.map(|[floor, ceiling, walls, furnishings]| ClassSampling {
+            floor,
+            ceiling,
+            walls,
+            furnishings,
+        }),
         wall_tally: p.tally.into(),
         release: {
             let floor = size[0] * size[1];

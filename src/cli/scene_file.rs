@@ -733,9 +733,13 @@ fn set_target_error(path: &Path, target_error: &mut Option<f64>, value: Option<f
 
 /// A particle count whose particles would not fit in memory is one line, not an abort.
 fn check_count(path: &Path, key: &str, count: usize) -> Result<(), Error> {
-    // A particle's state, its random stream and its share of the results, generously.
-    check_memory(&format!("{}: `{key}` = {count}", path.display()), count as u64, 512)
+    check_memory(&format!("{}: `{key}` = {count}", path.display()), count as u64, PARTICLE_BYTES)
 }
+
+/// What a particle of a run keeps in memory, generously: its record and tally (about 900
+/// bytes with the excursions' counts by level and by class of crossing), and a share of the
+/// study's results.
+const PARTICLE_BYTES: u64 = 1536;
 
 fn check_transient(path: &Path, transient: f64) -> Result<(), Error> {
     if (0.0..1.0).contains(&transient) {
@@ -986,4 +990,15 @@ fn size_classes(path: &Path, density: f64) -> Result<Vec<SizeClass>, Error> {
         }
     })?;
     Ok(classes)
+}
+
+#[cfg(test)]
+mod tests {
+    use depo::tracker::{ParticleTally, Record};
+
+    #[test]
+    fn a_particle_s_memory_is_counted_generously() {
+        let kept = std::mem::size_of::<ParticleTally>() + std::mem::size_of::<Record>();
+        assert!(kept as u64 * 3 / 2 <= super::PARTICLE_BYTES, "{kept} bytes a particle");
+    }
 }

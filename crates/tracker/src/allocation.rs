@@ -23,7 +23,11 @@
 //!
 //! with `d_ci` particle `i`'s deposits on the figure's surfaces from crossings of class `c`
 //! and `D_i` their sum over the classes. The bound takes all of `V_c` as within-crossing, so
-//! a figure ends at most where the bound puts it.
+//! it holds in expectation; but its `e` and `C_c` are themselves estimates from the first
+//! particles (a class whose deposits onto a figure were never seen there counts nothing
+//! against it), and a fractional number of excursions per crossing (the whole part, and one
+//! more by chance) adds a little spread it leaves out, small where deposits are rare. The
+//! study's rounds check the figures the particles actually give.
 
 use crate::excursions::CROSSING_CLASSES;
 use crate::run::{Estimate, Run};

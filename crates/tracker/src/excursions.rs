@@ -14,9 +14,10 @@
 //! The run tracks its particles plainly: they give the airborne exposure and the steady
 //! stream of *inward crossings* of a near-wall layer of thickness [`Excursions::layer`] (the
 //! distance from a particle's surface to the nearest wall). Each crossing within the averaging
-//! window starts [`Excursions::sampling`] *excursions* on average: copies of the particle with
-//! fresh random streams, each followed until it deposits, leaves the layer again, or outlives
-//! [`Excursions::max_duration`]. Their deposits, weighted `1 / sampling`, are what the run
+//! window starts [`Excursions::sampling`] *excursions* on average (times the class of the
+//! surface crossed's [`Excursions::class_sampling`]): copies of the particle with fresh random
+//! streams, each followed until it deposits, leaves the layer again, or outlives
+//! [`Excursions::max_duration`]. Their deposits, weighted one over that sampling, are what the run
 //! counts; the plain particle's own deposits are not (it goes on, or ends, as plain tracking
 //! would have it).
 //!
@@ -104,7 +105,8 @@ pub struct Excursions {
     /// Excursions started per inward crossing within the averaging window, on average: below
     /// 1 a probability, above 1 several independent excursions from the same crossing (its
     /// whole part, and one more with the probability of its fraction). Each weighs
-    /// `1 / sampling`.
+    /// `1 / sampling` (times the crossing's [`Excursions::class_sampling`] multiplier, in
+    /// both).
     pub sampling: f64,
     /// [`Excursions::sampling`]'s multiplier for a crossing into the layer of each class of
     /// surface ([`crossing_class`]: the floor, the ceiling, the walls, the furnishings' faces),
@@ -137,9 +139,12 @@ pub fn crossing_class(id: usize) -> usize {
     match id {
         0 | 1 => id,
         2..=5 => 2,
-        _ => 3,
+        _ => FURNISHINGS_CLASS,
     }
 }
+
+/// The [`crossing_class`] of every furnishing's face.
+pub const FURNISHINGS_CLASS: usize = 3;
 
 /// Strong sweeps caught on their way to the layer, in a channel (see the module docs): a
 /// particle whose fluid's normalised wall-normal fluctuation `zeta` carries it towards the

@@ -52,8 +52,7 @@ pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
     let prepared = prepare(scene, injection)?;
     let (records, particles, tallies) = track_range(scene, &prepared, 0..injection.count);
     let duration = prepared.steps as f64 * scene.dt;
-    let smallest_weight =
-        scene.excursions.as_ref().map_or(1.0, |e| e.splitting.weight(e.splitting.levels.len()) / e.sampling);
+    let smallest_weight = smallest_weight(scene);
     Ok(Run {
         records,
         particles,
@@ -78,12 +77,22 @@ pub fn run_more(scene: &Scene, injection: &Injection, mut previous: Run) -> Resu
         return Err(SceneError::new("count", injection.count as f64, "is fewer than the particles already run"));
     }
     let (records, particles, tallies) = track_range(scene, &prepared, done..injection.count);
+    previous.smallest_weight = previous.smallest_weight.min(smallest_weight(scene));
     previous.records.extend(records);
     previous.particles.extend(particles);
     for (sum, x) in previous.tallies.iter_mut().zip(tallies) {
         *sum += x;
     }
     Ok(previous)
+}
+
+/// The smallest weight a deposit can carry in `scene`: 1, or with excursions the deepest
+/// level's weight over the largest sampling of any class of crossing.
+fn smallest_weight(scene: &Scene) -> f64 {
+    scene.excursions.as_ref().map_or(1.0, |e| {
+        let most = e.class_sampling.iter().copied().fold(0.0, f64::max);
+        e.splitting.weight(e.splitting.levels.len()) / (e.sampling * most)
+    })
 }
 
 /// The scene validated and prepared for `injection`.

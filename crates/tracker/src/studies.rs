@@ -42,13 +42,13 @@ pub struct RoomStudy {
     /// deposition velocity onto each surface where Lai & Nazaroff's model gives at least
     /// [`RESOLVED_FROM`] (the figures a room study is read for). When the first `count`
     /// particles leave one of them less resolved, more are run (and pooled with them), in up
-    /// to three rounds of at most four times the particles run, until every figure is within
-    /// the target or `max_count` particles have run: each round as many as the least
-    /// resolved figure's error, falling as `1 / sqrt(n)`, says it needs, times
-    /// [`TARGET_MARGIN`] (or a few more where that lets the excursions be cut elsewhere).
-    /// With excursions, those particles start fewer excursions per crossing where the
-    /// figures they resolve have room to spare ([`crate::allocation`]). `None`: `count`
-    /// particles, whatever the errors.
+    /// to three rounds, until every figure is within the target or `max_count` particles have
+    /// run: each round as many as the least resolved figure's error, falling as
+    /// `1 / sqrt(n)`, says it needs, times [`TARGET_MARGIN`] (in the first, a few more where
+    /// that lets the excursions be cut elsewhere), but at most four times the particles run
+    /// in all but the last. With excursions, those particles start fewer excursions per
+    /// crossing where the figures they resolve have room to spare, as the first particles
+    /// show ([`crate::allocation`]). `None`: `count` particles, whatever the errors.
     pub target_error: Option<f64>,
     /// The most particles per diameter with `target_error`.
     pub max_count: usize,
@@ -142,7 +142,7 @@ pub const TARGET_ERROR: f64 = 0.05;
 /// The most rounds in which a room study runs more particles towards its `target_error`.
 const ROUNDS: usize = 3;
 
-/// The most a round of a room study multiplies the particles run.
+/// The most a round of a room study but its last multiplies the particles run.
 const ROUND_GROWTH: usize = 4;
 
 /// Whether estimate `e` has a deposit and a relative standard error of at most `target`.
@@ -267,6 +267,10 @@ pub struct RoomPoint {
     /// [`ROOM_LONGEST_EXCURSION`], doubled while the pilot gave up more than
     /// [`LONGEST_SHARE`] of the weight.
     pub longest_excursion: Option<f64>,
+    /// With excursions, the multipliers of their sampling per class of crossing (floor,
+    /// ceiling, walls, furnishings; [`Excursions::class_sampling`]) that the particles after
+    /// the first ran with: 1 where the study cut none, or ran no more particles.
+    pub class_sampling: Option<[f64; CROSSING_CLASSES]>,
     /// Wall-clock time of the excursions' pilot calibration, s (0 without excursions): a
     /// cost fixed per run, which does not grow with the particles run.
     pub calibration_seconds: f64,
@@ -371,7 +375,8 @@ impl RoomStudy {
     }
 
     /// The particles to run for `target` (about `needed`, at most `max_count`) and the
-    /// sampling multipliers per class of crossing for those after `first`
+    /// sampling multipliers per class of crossing for those after `first`, the first
+    /// particles, all run at the full sampling
     /// ([`allocation::plan`]): from the first particles' figures and steps, with
     /// [`TARGET_MARGIN`] for the spread of their errors.
     fn plan(&self, first: &Run, model: &LaiNazaroff, needed: usize, target: f64) -> (usize, [f64; CROSSING_CLASSES]) {
@@ -422,23 +427,28 @@ impl RoomStudy {
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             let mut result = run(&scene, &injection).map_err(for_diameters)?;
             if let Some(target) = self.target_error {
-                // In rounds, each to at most `ROUND_GROWTH` times the particles run: the errors
-                // of the first particles, which rest on fewer deposits, are rough, and later
-                // rounds stop where every figure is resolved rather than at what those said.
+                // In rounds, each but the last to at most `ROUND_GROWTH` times the particles
+                // run: the errors of the first particles, which rest on fewer deposits, are
+                // rough, and later rounds stop where every figure is resolved rather than at
+                // what those said. The cuts are planned once, from the first particles, which
+                // all ran at the full sampling.
                 let mut have = self.count;
                 for round in 0..ROUNDS {
                     if round > 0 && Self::resolved_figures(&result, &model).iter().all(|(e, _)| resolved(e, target)) {
                         break;
                     }
-                    let needed = self.needed(&result, &model, target);
+                    let mut needed = self.needed(&result, &model, target);
                     if needed <= have {
                         break;
                     }
-                    let (planned, sampling) = self.plan(&result, &model, needed, target);
-                    if let Some(excursions) = scene.excursions.as_mut() {
-                        excursions.class_sampling = sampling;
+                    if round == 0 {
+                        let (planned, sampling) = self.plan(&result, &model, needed, target);
+                        if let Some(excursions) = scene.excursions.as_mut() {
+                            excursions.class_sampling = sampling;
+                        }
+                        needed = planned;
                     }
-                    have = planned.min(have * ROUND_GROWTH);
+                    have = if round + 1 < ROUNDS { needed.min(have * ROUND_GROWTH) } else { needed };
                     result = run_more(&scene, &Injection { count: have, ..injection }, result)?;
                 }
             }
@@ -475,6 +485,7 @@ impl RoomStudy {
                 particles: result.records.len(),
                 excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
                 longest_excursion: scene.excursions.as_ref().map(|e| e.max_duration),
+                class_sampling: scene.excursions.as_ref().map(|e| e.class_sampling),
                 calibration_seconds,
                 tally: total(&result.tallies),
                 maps: result
@@ -655,7 +666,7 @@ impl ChannelStudy {
                 let mut have = count;
                 for round in 0..2 {
                     let e = all_walls(&result);
-                    if round > 0 && e.error <= target * e.value {
+                    if round > 0 && resolved(&e, target) {
                         break;
                     }
                     let needed = particles_for(&e, have, target);

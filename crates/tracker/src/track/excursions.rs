@@ -9,7 +9,7 @@ use glam::DVec3;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::RngExt;
 
-use crate::excursions::{crossing_class, Excursions, CROSSING_CLASSES, MAX_LEVELS};
+use crate::excursions::{crossing_class, Excursions, CROSSING_CLASSES, FURNISHINGS_CLASS, MAX_LEVELS};
 use crate::furnishing::Furnishing;
 use crate::noise::{branch_rng, particle_rng, Normals};
 
@@ -240,7 +240,7 @@ fn nearest_class(p: &Prepared<'_>, x: DVec3) -> usize {
     for b in p.boxes {
         let outside = |a: usize| (b.low[a] - x[a]).max(x[a] - b.high[a]).max(0.0);
         if (0..3).map(|a| outside(a).powi(2)).sum::<f64>() < nearest.1 * nearest.1 {
-            return crossing_class(p.walls.len());
+            return FURNISHINGS_CLASS;
         }
     }
     nearest.0
