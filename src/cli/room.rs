@@ -52,6 +52,13 @@ impl From<Estimate> for Measured {
 }
 
 impl Measured {
+    /// Back to the study's estimate (the upper bound, unused by the studies' rules, NaN where
+    /// events were seen).
+    fn estimate(&self) -> Estimate {
+        let upper_bound = self.upper_bound.unwrap_or(f64::NAN);
+        Estimate { value: self.value, error: self.error, events: self.events, upper_bound }
+    }
+
     /// `value +- error [events]`, or `< bound [0]` when nothing deposited.
     pub fn cell(&self) -> String {
         match self.upper_bound {
@@ -91,7 +98,7 @@ fn unresolved(measured: &Measured, model: f64, given_up: f64) -> bool {
 /// Whether `measured`, with deposit events, has a relative standard error above
 /// [`RESOLVED_ERROR`] where the model `model` (m/s) asks it ([`RESOLVABLE`]).
 fn too_uncertain(measured: &Measured, model: f64) -> bool {
-    model >= RESOLVABLE && measured.events > 0 && measured.error > RESOLVED_ERROR * measured.value
+    model >= RESOLVABLE && measured.events > 0 && !studies::resolved(&measured.estimate(), RESOLVED_ERROR)
 }
 
 /// The particles that would bring the `figures` (each a measured deposition velocity beside
@@ -103,10 +110,7 @@ fn particles_to_resolve(particles: usize, figures: [(&Measured, f64); 3]) -> Opt
     figures
         .into_iter()
         .filter(|(m, model)| too_uncertain(m, *model))
-        .map(|(m, _)| {
-            let estimate = Estimate { value: m.value, error: m.error, events: m.events, upper_bound: f64::NAN };
-            studies::particles_for(&estimate, particles, RESOLVED_ERROR)
-        })
+        .map(|(m, _)| studies::particles_for(&m.estimate(), particles, RESOLVED_ERROR))
         .max()
 }
 

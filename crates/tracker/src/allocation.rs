@@ -69,6 +69,11 @@ impl Figure {
     }
 }
 
+/// The excursions' steps with multipliers `s`, from each class's `steps` at full sampling.
+fn excursion_steps(s: [f64; CROSSING_CLASSES], steps: [f64; CROSSING_CLASSES]) -> f64 {
+    (0..CROSSING_CLASSES).map(|c| s[c] * steps[c]).sum()
+}
+
 /// The multipliers a class's sampling may take, from none to an eighth.
 pub const MULTIPLIERS: [f64; 7] = [1.0, 0.7, 0.5, 0.35, 0.25, 0.18, 0.125];
 
@@ -100,7 +105,7 @@ pub fn plan(
         let count = ((needed as f64 * more).ceil() as usize).min(max);
         let held = if count == max { target / margin } else { target / margin.sqrt() };
         let s = class_sampling(figures, steps, first, count, held);
-        let cost = count as f64 * (tracked + (0..CROSSING_CLASSES).map(|c| s[c] * steps[c]).sum::<f64>());
+        let cost = count as f64 * (tracked + excursion_steps(s, steps));
         if cost < best.2 {
             best = (count, s, cost);
         }
@@ -124,7 +129,7 @@ pub fn class_sampling(
     count: usize,
     target: f64,
 ) -> [f64; CROSSING_CLASSES] {
-    let mut best = ([1.0; CROSSING_CLASSES], steps.iter().sum::<f64>());
+    let mut best = ([1.0; CROSSING_CLASSES], excursion_steps([1.0; CROSSING_CLASSES], steps));
     let Some(figures) = figures.iter().copied().collect::<Option<Vec<Figure>>>() else { return best.0 };
     // Each figure's bound on the scale of the first particles.
     let scale = count as f64 / first as f64;
@@ -132,7 +137,7 @@ pub fn class_sampling(
     let choices = MULTIPLIERS.len();
     for k in 0..choices.pow(CROSSING_CLASSES as u32) {
         let s: [f64; CROSSING_CLASSES] = std::array::from_fn(|c| MULTIPLIERS[k / choices.pow(c as u32) % choices]);
-        let cost: f64 = (0..CROSSING_CLASSES).map(|c| s[c] * steps[c]).sum();
+        let cost = excursion_steps(s, steps);
         if cost >= best.1 {
             continue;
         }

@@ -21,7 +21,7 @@ use crate::air::Air;
 use crate::allocation::{self, Figure};
 use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
 use crate::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
-use crate::excursions::{Excursions, Sweeps, CROSSING_CLASSES};
+use crate::excursions::{crossing_class, Excursions, Sweeps, CROSSING_CLASSES};
 use crate::filtration::Filtration;
 use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
@@ -145,8 +145,10 @@ const ROUNDS: usize = 3;
 /// The most a round of a room study but its last multiplies the particles run.
 const ROUND_GROWTH: usize = 4;
 
-/// Whether estimate `e` has a deposit and a relative standard error of at most `target`.
-fn resolved(e: &Estimate, target: f64) -> bool {
+/// Whether estimate `e` has a deposit and a relative standard error of at most `target`:
+/// what the studies run more particles until, and what `depo room` flags where not.
+#[must_use]
+pub fn resolved(e: &Estimate, target: f64) -> bool {
     e.events > 0 && e.error <= target * e.value
 }
 
@@ -349,17 +351,16 @@ fn total(tallies: &[WallTally]) -> WallTally {
 impl RoomStudy {
     /// The figures a size must resolve in `run`: `beta`, and each orientation of the room's
     /// walls where Lai & Nazaroff give at least [`RESOLVED_FROM`]; each with the
-    /// [`crossing_class`](crate::excursions::crossing_class)es of the surfaces it counts.
+    /// [`crossing_class`]es of the surfaces it counts.
     fn resolved_figures(run: &Run, model: &LaiNazaroff) -> Vec<(Estimate, [bool; CROSSING_CLASSES])> {
         let mut figures = vec![(run.loss_rate(), [true; CROSSING_CLASSES])];
-        for (orientation, reference, class) in [
-            (Orientation::Floor, model.floor, 0),
-            (Orientation::Ceiling, model.ceiling, 1),
-            (Orientation::Wall, model.wall, 2),
-        ] {
+        for (orientation, reference) in
+            [(Orientation::Floor, model.floor), (Orientation::Ceiling, model.ceiling), (Orientation::Wall, model.wall)]
+        {
             if reference >= RESOLVED_FROM {
-                let onto = std::array::from_fn(|c| c == class);
-                figures.push((run.deposition_velocity(&run.walls_facing(orientation)), onto));
+                let walls = run.walls_facing(orientation);
+                let onto = std::array::from_fn(|c| walls.iter().any(|&w| crossing_class(w) == c));
+                figures.push((run.deposition_velocity(&walls), onto));
             }
         }
         figures
