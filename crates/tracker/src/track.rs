@@ -25,7 +25,11 @@
 //! [`Scheme::Euler`] is forward Euler (Euler-Maruyama with Brownian motion), for comparison.
 //! [`Scheme::Midpoint`] is the exponential step with `u_f` (and the step of `zeta`) read not
 //! at `x0` but where `x(dt/2)` of the formula above puts the particle for the `u_f` at `x0`:
-//! a predictor that makes the step second order in the turbulence's gradients.
+//! a predictor that makes the step second order in the turbulence's gradients. In a room the
+//! predictor's `u_f` is the mean flow plus `g sigma zeta` with the current `zeta` and the
+//! scale `g sigma` where the last step read the turbulence (half a step back): that moves the
+//! predicted point by `O(dt^2)`, still second order, and saves a second read of the profiles
+//! per step ([`Flyer::half_step_position`]).
 //!
 //! ## Wall contacts
 //! When a step ends with the sphere through a wall plane (centre closer than its radius), the
@@ -187,6 +191,10 @@ pub(crate) struct Prepared<'a> {
     /// Whether each step takes the turbulence half a step on ([`Scheme::Midpoint`] in a
     /// turbulent scene).
     pub midpoint: bool,
+    /// Whether the midpoint scheme's predictor takes the fluctuation's scale from the last
+    /// step's read ([`Flyer::half_step_position`]): in a room (no mean profile, no
+    /// correlated components, no intermittent model).
+    pub reuse_scale: bool,
     /// The step this preparation is for, s: the scene's, or its excursions' coarse step.
     pub dt: f64,
     /// The scene prepared for the excursions' coarse steps ([`Excursions::coarse_factor`]
@@ -225,6 +233,8 @@ impl<'a> Prepared<'a> {
                 Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, dt, scene.drift_correction));
         }
         let midpoint = scene.scheme == Scheme::Midpoint && field.turbulence.is_some();
+        let reuse_scale =
+            midpoint && field.profile.is_none() && field.stress_coupling.is_none() && field.intermittent.is_none();
         Ok(Self {
             scene,
             injection,
@@ -247,6 +257,7 @@ impl<'a> Prepared<'a> {
             steps: scene.steps(),
             window: [scene.average_from, scene.steps() as f64 * scene.dt],
             midpoint,
+            reuse_scale,
             dt,
             coarse: None,
         })
@@ -547,7 +558,7 @@ fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
     let mut uf = if p.boxes.is_empty() {
         fluid_velocity::<true>(&p.field, p.size, x, &zeta)
     } else {
-        furnished_fluid_velocity(&p.field, p.size, p.boxes, x, &mut zeta, None)
+        furnished_fluid_velocity(&p.field, p.size, p.boxes, x, &mut zeta, None).0
     };
     if let Some(mean) = &p.mean_flow {
         uf += DVec3::from_array(mean.velocity(start));
@@ -592,6 +603,10 @@ pub(crate) struct Flyer {
     lift_coefficient: f64,
     /// The cell of the openings' mean flow it was last in ([`PotentialFlow::velocity_in`]).
     flow_cell: FlowCell,
+    /// Each fluctuating component's scale `g sigma` where the turbulence was last read, in a
+    /// scene whose predictor reuses it ([`Prepared::reuse_scale`]); `None` before the first
+    /// read.
+    scale: Option<[f64; 3]>,
 }
 
 impl Flyer {
@@ -612,6 +627,7 @@ impl Flyer {
             draws: StepNormals::new(normals),
             lift_coefficient,
             flow_cell: FlowCell::NONE,
+            scale: None,
         }
     }
 
@@ -643,14 +659,18 @@ impl Flyer {
     /// Where the particle would be half a step on from `x` with velocity `v`, flying towards
     /// the fluid velocity seen at `x` (its fluctuation as it stands) plus its settling: the
     /// exponential scheme's exact flight for that constant target, without Brownian motion
-    /// or lift; `x` itself where that leaves the fluid. [`Scheme::Midpoint`]'s predictor.
+    /// or lift; `x` itself where that leaves the fluid. [`Scheme::Midpoint`]'s predictor. Where
+    /// the scene reuses the scale ([`Prepared::reuse_scale`]) the fluctuation is `g sigma` of
+    /// the last read times the current `zeta`, without reading the profiles at `x`.
     fn half_step_position(&mut self, p: &Prepared<'_>, x: DVec3, v: DVec3) -> DVec3 {
         let field = &p.field;
-        let mut u0 = if p.boxes.is_empty() {
-            fluid_velocity::<true>(field, p.size, x, &self.zeta)
-        } else {
-            let mut zeta = self.zeta;
-            furnished_fluid_velocity(field, p.size, p.boxes, x, &mut zeta, None)
+        let mut u0 = match self.scale {
+            Some(scale) => DVec3::from_array(field.uniform) + DVec3::from_array(scale) * DVec3::from_array(self.zeta),
+            None if p.boxes.is_empty() => fluid_velocity::<true>(field, p.size, x, &self.zeta),
+            None => {
+                let mut zeta = self.zeta;
+                furnished_fluid_velocity(field, p.size, p.boxes, x, &mut zeta, None).0
+            }
         };
         if let Some(mean) = &p.mean_flow {
             u0 += DVec3::from_array(mean.velocity_in(x.to_array(), &mut self.flow_cell));
@@ -685,10 +705,21 @@ impl Flyer {
         let z = self.draws.step(n, per_step);
         let mut uf = if !p.boxes.is_empty() {
             let normals = TURB.then(|| [z[0], z[1], z[2]]);
-            furnished_fluid_velocity(field, p.size, p.boxes, at, &mut self.zeta, normals)
+            let (u, scale) = furnished_fluid_velocity(field, p.size, p.boxes, at, &mut self.zeta, normals);
+            if p.reuse_scale {
+                self.scale = Some(scale);
+            }
+            u
         } else if TURB {
             match &field.intermittent {
-                None => fluid_velocity_and_fluctuation(field, p.size, at, &mut self.zeta, [z[0], z[1], z[2]]),
+                None => {
+                    let (u, scale) =
+                        fluid_velocity_and_fluctuation(field, p.size, at, &mut self.zeta, [z[0], z[1], z[2]]);
+                    if p.reuse_scale {
+                        self.scale = Some(scale);
+                    }
+                    u
+                }
                 Some(model) => {
                     intermittent_fluid_velocity(field, model, p.size, at, &mut self.zeta, [z[0], z[1], z[2]])
                 }
@@ -831,6 +862,53 @@ mod tests {
         // Large h: position variance tends to 2 D dt with D = kT/m tau.
         let [sx, ..] = brownian_coefficients(1e6, tau, kt);
         assert!((sx * sx / (2.0 * kt * tau * tau * 1e6) - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn a_room_s_predictor_reuses_the_last_read_s_scale() {
+        // With the scale read where the particle stands, the predictor that reuses it is the
+        // fresh one (to rounding: `g sigma` is multiplied in another order): the scale is each
+        // component's `g sigma` and nothing else. Near the floor and, furnished, a table's top,
+        // where the profiles change.
+        for furnished in [false, true] {
+            let mut scene = Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 10.0);
+            scene.flow = Flow::indoor_room();
+            scene.brownian = true;
+            scene.scheme = Scheme::Midpoint;
+            if furnished {
+                scene.furnishings = vec![Furnishing::new([1.0, 1.0, 0.7], [2.0, 1.5, 0.75])];
+            }
+            let injection = Injection::new(10, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
+            let p = Prepared::new(&scene, &injection).unwrap();
+            assert!(p.reuse_scale);
+            let mut tally = vec![WallTally::default(); p.surfaces.len()];
+            let mut flyer = Flyer::inject(&p, 3, true, true);
+            assert_eq!(flyer.scale, None);
+            let _ = flyer.step::<true, true, false, false, false>(&p, 0, &mut tally);
+            assert!(flyer.scale.is_some(), "a step keeps its read's scale");
+            for (x, zeta) in [([1.5, 1.2, 0.78], [0.7, -1.3, 0.4]), ([3.0, 2.9, 0.02], [-0.2, 0.9, -1.1])] {
+                let x = DVec3::from_array(x);
+                flyer.zeta = zeta;
+                let v = DVec3::new(0.01, -0.02, 0.005);
+                let (_, scale) = if furnished {
+                    furnished_fluid_velocity(&p.field, p.size, p.boxes, x, &mut flyer.zeta.clone(), None)
+                } else {
+                    fluid_velocity_and_fluctuation(&p.field, p.size, x, &mut flyer.zeta.clone(), [0.0; 3])
+                };
+                flyer.scale = Some(scale);
+                let reused = flyer.half_step_position(&p, x, v);
+                flyer.scale = None;
+                let fresh = flyer.half_step_position(&p, x, v);
+                assert!((reused - fresh).length() < 1e-15, "{reused} {fresh}");
+                assert!((fresh - x).length() > 1e-4, "the fluctuation moves it: {fresh} {x}");
+            }
+        }
+        // A channel's predictor reads afresh: its mean profile and correlated components.
+        let mut channel = Scene::new(crate::Geometry::Channel { length: 0.1, width: 0.05, height: 0.02 }, 1e-4, 0.01);
+        channel.flow = Flow::TurbulentChannel { friction_velocity: 0.5 };
+        channel.scheme = Scheme::Midpoint;
+        let injection = Injection::new(10, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
+        assert!(!Prepared::new(&channel, &injection).unwrap().reuse_scale);
     }
 
     #[test]

@@ -47,7 +47,8 @@ pub(super) fn stress_part(coupling: &Table, size: [f64; 3], x: DVec3, zeta_norma
 /// exact Ornstein-Uhlenbeck step there ([`langevin_step`]), with the drift's sign that of
 /// the change of that distance along the axis. The components along a surface are damped
 /// by the room's walls only (see the comment below): a box's faces shape the component
-/// across them, not those along them.
+/// across them, not those along them. Also returns each component's scale `g sigma` there,
+/// what the midpoint scheme's next predictor reuses in a room (`Flyer::half_step_position`).
 #[inline]
 pub(super) fn furnished_fluid_velocity(
     field: &FlowField,
@@ -56,8 +57,9 @@ pub(super) fn furnished_fluid_velocity(
     x: DVec3,
     zeta: &mut [f64; 3],
     normals: Option<[f64; 3]>,
-) -> DVec3 {
+) -> (DVec3, [f64; 3]) {
     let mut u = DVec3::from_array(field.uniform);
+    let mut scale = [0.0; 3];
     if let Some(profile) = &field.profile {
         u.x += profile.at(wall_distance(x.z, size[2]).0).sigma;
     }
@@ -82,6 +84,7 @@ pub(super) fn furnished_fluid_velocity(
         };
         let g = tangential_products([tangential(0), tangential(1), tangential(2)]);
         for a in 0..3 {
+            scale[a] = g[a] * nodes[a].sigma;
             let sign = ds[a].1;
             match normals {
                 Some(normals) => {
@@ -93,7 +96,7 @@ pub(super) fn furnished_fluid_velocity(
             }
         }
     }
-    u
+    (u, scale)
 }
 
 /// Saffman's (1965, erratum 1968) shear lift on a sphere in the mean shear `G = dU/dz` of a
@@ -117,7 +120,8 @@ pub(super) fn saffman_lift(field: &FlowField, size: [f64; 3], x: DVec3, uf: DVec
 
 /// The fluid velocity seen at `x` (mean plus `sigma zeta`), and one exact Ornstein-Uhlenbeck
 /// step of the normalised fluctuations `zeta` there driven by the standard normals `normals`,
-/// from one table lookup per component.
+/// from one table lookup per component; and each component's scale `g sigma` there, as
+/// [`furnished_fluid_velocity`] gives it.
 #[inline(always)]
 pub(super) fn fluid_velocity_and_fluctuation(
     field: &FlowField,
@@ -125,8 +129,9 @@ pub(super) fn fluid_velocity_and_fluctuation(
     x: DVec3,
     zeta: &mut [f64; 3],
     normals: [f64; 3],
-) -> DVec3 {
+) -> (DVec3, [f64; 3]) {
     let mut u = fluid_velocity::<false>(field, size, x, zeta);
+    let mut scale = [0.0; 3];
     if let Some(turb) = &field.turbulence {
         let distance = |comp: &Component| wall_distance(x.to_array()[comp.axis], size[comp.axis]);
         // Arrays written out: `array::map` here was left as a call per element.
@@ -135,6 +140,7 @@ pub(super) fn fluid_velocity_and_fluctuation(
         let g = tangential_products([nodes[0].tangential, nodes[1].tangential, nodes[2].tangential]);
         let zeta_normal = zeta[2];
         for a in 0..3 {
+            scale[a] = g[a] * nodes[a].sigma;
             let (du, next) = langevin_step(&nodes[a], g[a], ds[a].1, zeta[a], normals[a]);
             u[a] += du;
             zeta[a] = next;
@@ -143,7 +149,7 @@ pub(super) fn fluid_velocity_and_fluctuation(
             u.x += stress_part(coupling, size, x, zeta_normal);
         }
     }
-    u
+    (u, scale)
 }
 
 /// As [`fluid_velocity_and_fluctuation`] in a channel with the intermittent near-wall model:
