@@ -1,7 +1,7 @@
 //! Tracking throughput in particle-steps per second on the current rayon pool (all cores),
 //! for the two scenes the tracker's speed goals name: drag and gravity in a box with the wall
 //! law on every wall, and the same with turbulent dispersion and Brownian motion; and that
-//! turbulent scene again with the midpoint scheme (two reads of the profiles per step, one
+//! turbulent scene again with the midpoint scheme (its predictor reusing the last read, one
 //! particle at a time), which the room study uses at twice the step of the default scheme.
 //!
 //! `cargo bench -p depo-tracker --bench tracking`; criterion's "thrpt" is particle-steps/s.

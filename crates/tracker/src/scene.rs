@@ -70,13 +70,14 @@ pub enum Scheme {
     /// with this one; the default room's `beta` with this scheme at `dt` 0.05, 0.1 and 0.2 s
     /// agrees within its errors with the default scheme's at 0.01 s, where the default
     /// scheme at 0.05 s was 9-14 % high at 0.01-0.3 um (docs/validation.md). The room study
-    /// uses it. In a room (no mean profile, no correlated components) the predictor takes the
-    /// fluctuation's scale `g sigma` where the last step read it rather than reading the
-    /// profiles at the start: the predicted point moves by `O(dt^2)`, which keeps the step
-    /// second order, and each step reads the profiles once instead of twice (between those
+    /// uses it. In a room's turbulence (no mean profile, no correlated components) the
+    /// predictor takes the fluctuation's scale `g sigma` where the last step read it rather
+    /// than reading the profiles at the start: the predicted point moves by `O(dt^2)` (with
+    /// Brownian motion, also by `O(dt^(3/2))` of zero mean), which keeps the step second
+    /// order, and each step reads the turbulence's profiles once instead of twice (between those
     /// mirrors at `dt = 0.05 s`, 1.07, 1.06 and 1.07 of uniform across x, y and z, against
-    /// 1.11, 1.07 and 1.09 with the second read; each +- 0.03). Elsewhere each step reads
-    /// them twice. Particles go one at a time (the tracker's lanes do not have it).
+    /// 1.11, 1.07 and 1.09 with the second read; each +- 0.03). With a mean profile (a
+    /// channel's) each step reads them twice. Particles go one at a time (the tracker's lanes do not have it).
     Midpoint,
 }
 

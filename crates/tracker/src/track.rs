@@ -28,8 +28,10 @@
 //! a predictor that makes the step second order in the turbulence's gradients. In a room the
 //! predictor's `u_f` is the mean flow plus `g sigma zeta` with the current `zeta` and the
 //! scale `g sigma` where the last step read the turbulence (half a step back): that moves the
-//! predicted point by `O(dt^2)`, still second order, and saves a second read of the profiles
-//! per step ([`Flyer::half_step_position`]).
+//! predicted point by `O(dt^2)` (with Brownian motion, also by `O(dt^(3/2))` of zero mean),
+//! which keeps the step second order, and saves a second read of the turbulence's profiles
+//! per step ([`Flyer::half_step_position`]; the openings' mean flow is still read at the
+//! start).
 //!
 //! ## Wall contacts
 //! When a step ends with the sphere through a wall plane (centre closer than its radius), the
@@ -664,7 +666,7 @@ impl Flyer {
     /// the last read times the current `zeta`, without reading the profiles at `x`.
     fn half_step_position(&mut self, p: &Prepared<'_>, x: DVec3, v: DVec3) -> DVec3 {
         let field = &p.field;
-        let mut u0 = match self.scale {
+        let mut u0 = match self.scale.filter(|_| p.reuse_scale) {
             Some(scale) => DVec3::from_array(field.uniform) + DVec3::from_array(scale) * DVec3::from_array(self.zeta),
             None if p.boxes.is_empty() => fluid_velocity::<true>(field, p.size, x, &self.zeta),
             None => {
@@ -886,6 +888,15 @@ mod tests {
             assert_eq!(flyer.scale, None);
             let _ = flyer.step::<true, true, false, false, false>(&p, 0, &mut tally);
             assert!(flyer.scale.is_some(), "a step keeps its read's scale");
+            // The predictor takes it: with a zero scale it is the flight without turbulence.
+            let (x, v) = (flyer.x, flyer.v);
+            let kept = flyer.scale;
+            flyer.scale = Some([0.0; 3]);
+            let still = flyer.half_step_position(&p, x, v);
+            flyer.zeta = [0.0; 3];
+            flyer.scale = None;
+            assert!((flyer.half_step_position(&p, x, v) - still).length() < 1e-15);
+            flyer.scale = kept;
             for (x, zeta) in [([1.5, 1.2, 0.78], [0.7, -1.3, 0.4]), ([3.0, 2.9, 0.02], [-0.2, 0.9, -1.1])] {
                 let x = DVec3::from_array(x);
                 flyer.zeta = zeta;
@@ -908,7 +919,12 @@ mod tests {
         channel.flow = Flow::TurbulentChannel { friction_velocity: 0.5 };
         channel.scheme = Scheme::Midpoint;
         let injection = Injection::new(10, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-        assert!(!Prepared::new(&channel, &injection).unwrap().reuse_scale);
+        let p = Prepared::new(&channel, &injection).unwrap();
+        assert!(!p.reuse_scale);
+        let mut flyer = Flyer::inject(&p, 3, true, false);
+        let _ =
+            flyer.step::<false, true, false, false, false>(&p, 0, &mut vec![WallTally::default(); p.surfaces.len()]);
+        assert_eq!(flyer.scale, None);
     }
 
     #[test]
