@@ -131,9 +131,9 @@ fn bare_room_loses_10um_particles_at_the_settling_rate() {
         assert!(error < 0.1 * beta, "{file}: beta {beta} +- {error}");
         // Well mixed, the ratio is 1; with no mixing at all, particles settling as a plug from
         // a uniform start over the study's window (from 180 s to the 790 s 10 um take to fall
-        // 2.42 m) give 2.6. depo's cores lie between: 1.79 in the slow room and 1.16 in the
-        // fast one (docs/validation.md, "Measured rooms"). A diameter read as a radius is a
-        // factor 4 or 1/4, gravity in the wrong unit 100, no settling 0.
+        // 2.42 m) give 2.6. depo's cores lie between: 1.79 +- 0.09 in the slow room and
+        // 1.16 +- 0.06 in the fast one (docs/validation.md, "Measured rooms"). A diameter read
+        // as a radius is a factor 4 or 1/4, gravity in the wrong unit 100, no settling 0.
         let ratio = beta / settling;
         assert!((0.8..2.0).contains(&ratio), "{file}: beta {beta} 1/h against settling alone {settling} 1/h");
         let on = |k: &str| ten["deposited"][k].as_u64().unwrap();

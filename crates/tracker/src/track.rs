@@ -605,9 +605,9 @@ pub(crate) struct Flyer {
     lift_coefficient: f64,
     /// The cell of the openings' mean flow it was last in ([`PotentialFlow::velocity_in`]).
     flow_cell: FlowCell,
-    /// Each fluctuating component's scale `g sigma` where the turbulence was last read, in a
-    /// scene whose predictor reuses it ([`Prepared::reuse_scale`]); `None` before the first
-    /// read.
+    /// Each fluctuating component's scale `g sigma` where the turbulence was last read, which
+    /// the predictor reuses where the scene allows it ([`Prepared::reuse_scale`]); `None`
+    /// before the first read, and where the read gives none (the intermittent model).
     scale: Option<[f64; 3]>,
 }
 
@@ -705,30 +705,25 @@ impl Flyer {
         // Where the flow is read: the start of the step, or half a step on (`Scheme::Midpoint`).
         let at = if TURB && p.midpoint { self.half_step_position(p, x, v) } else { x };
         let z = self.draws.step(n, per_step);
-        let mut uf = if !p.boxes.is_empty() {
+        let (mut uf, scale) = if !p.boxes.is_empty() {
             let normals = TURB.then(|| [z[0], z[1], z[2]]);
             let (u, scale) = furnished_fluid_velocity(field, p.size, p.boxes, at, &mut self.zeta, normals);
-            if p.reuse_scale {
-                self.scale = Some(scale);
-            }
-            u
+            (u, Some(scale))
         } else if TURB {
             match &field.intermittent {
                 None => {
                     let (u, scale) =
                         fluid_velocity_and_fluctuation(field, p.size, at, &mut self.zeta, [z[0], z[1], z[2]]);
-                    if p.reuse_scale {
-                        self.scale = Some(scale);
-                    }
-                    u
+                    (u, Some(scale))
                 }
                 Some(model) => {
-                    intermittent_fluid_velocity(field, model, p.size, at, &mut self.zeta, [z[0], z[1], z[2]])
+                    (intermittent_fluid_velocity(field, model, p.size, at, &mut self.zeta, [z[0], z[1], z[2]]), None)
                 }
             }
         } else {
-            fluid_velocity::<false>(field, p.size, x, &self.zeta)
+            (fluid_velocity::<false>(field, p.size, x, &self.zeta), None)
         };
+        self.scale = scale;
         if let Some(mean) = &p.mean_flow {
             uf += DVec3::from_array(mean.velocity_in(at.to_array(), &mut self.flow_cell));
         }
@@ -914,7 +909,8 @@ mod tests {
                 assert!((fresh - x).length() > 1e-4, "the fluctuation moves it: {fresh} {x}");
             }
         }
-        // A channel's predictor reads afresh: its mean profile and correlated components.
+        // A channel's predictor reads afresh (its mean profile and correlated components):
+        // a scale planted in its flyer changes nothing.
         let mut channel = Scene::new(crate::Geometry::Channel { length: 0.1, width: 0.05, height: 0.02 }, 1e-4, 0.01);
         channel.flow = Flow::TurbulentChannel { friction_velocity: 0.5 };
         channel.scheme = Scheme::Midpoint;
@@ -922,9 +918,10 @@ mod tests {
         let p = Prepared::new(&channel, &injection).unwrap();
         assert!(!p.reuse_scale);
         let mut flyer = Flyer::inject(&p, 3, true, false);
-        let _ =
-            flyer.step::<false, true, false, false, false>(&p, 0, &mut vec![WallTally::default(); p.surfaces.len()]);
-        assert_eq!(flyer.scale, None);
+        let (x, v) = (flyer.x, flyer.v);
+        let fresh = flyer.half_step_position(&p, x, v);
+        flyer.scale = Some([0.0; 3]);
+        assert_eq!(flyer.half_step_position(&p, x, v), fresh);
     }
 
     #[test]
