@@ -55,7 +55,7 @@
 //! is the room's volume less the boxes' ([`free_volume`]), and it is the volume of the room's
 //! well-mixed concentration, its deposition velocities and loss rate.
 
-use crate::geometry::{Orientation, Wall, WALL_AXES};
+use crate::geometry::{greater, lesser, Orientation, Wall, WALL_AXES};
 use crate::scene::WallBehaviour;
 
 /// The names of a box's faces, in face order.
@@ -138,6 +138,15 @@ impl Furnishing {
     #[must_use]
     pub fn holds(&self, x: [f64; 3], r: f64) -> bool {
         (0..3).all(|a| x[a] > self.low[a] - r && x[a] < self.high[a] + r)
+    }
+
+    /// The squared distance from `x` to the box, m^2 (0 within it).
+    #[inline(always)]
+    #[must_use]
+    pub fn squared_distance(&self, x: [f64; 3]) -> f64 {
+        let outside = |a: usize| greater(greater(self.low[a] - x[a], x[a] - self.high[a]), 0.0);
+        let [ox, oy, oz] = [outside(0), outside(1), outside(2)];
+        ox * ox + oy * oy + oz * oz
     }
 
     /// Whether the interiors of two boxes overlap.
@@ -230,7 +239,7 @@ pub(crate) fn nearest_surfaces_within(
         // be the nearer along some axis: a rounded root below `best` needs an exact one below
         // it, so `squared` at most `best * best` rounded.
         let squared = along[0] * along[0] + along[1] * along[1] + along[2] * along[2];
-        let farthest = nearest[0].0.max(nearest[1].0).max(nearest[2].0).min(within);
+        let farthest = lesser(greater(nearest[0].0, greater(nearest[1].0, nearest[2].0)), within);
         if squared > farthest * farthest {
             continue;
         }
@@ -244,6 +253,53 @@ pub(crate) fn nearest_surfaces_within(
         }
     }
     nearest
+}
+
+/// A ball that no furnishing reaches into: around `centre`, of radius the distance from it
+/// to the nearest box. Each particle carries one ([`Clearance::around`] where it last came
+/// near a box), and its step asks it which boxes can lie within some reach of a point
+/// ([`Clearance::near`]): far from every box (most of a room's air, and most of its walls)
+/// none can, the boxes' loops are skipped, and the step is a bare room's, with the same
+/// numbers, bit for bit, as with the loops.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Clearance {
+    centre: [f64; 3],
+    radius: f64,
+}
+
+impl Clearance {
+    /// No ball known: every box may matter.
+    pub const NONE: Self = Self { centre: [0.0; 3], radius: f64::NEG_INFINITY };
+
+    /// The ball around `x` clear of `boxes` (infinite without any).
+    #[must_use]
+    pub fn around(x: [f64; 3], boxes: &[Furnishing]) -> Self {
+        let squared = boxes.iter().fold(f64::INFINITY, |s, b| lesser(s, b.squared_distance(x)));
+        // Shrunk by far more than the rounding of the root and of `keeps`' test.
+        Self { centre: x, radius: squared.sqrt() * (1.0 - 1e-9) }
+    }
+
+    /// Whether every box lies farther than `reach` (m) from `y`: `y` lies within the ball
+    /// shrunk by `reach` (the distance to a box changes no faster than the point moves).
+    #[inline(always)]
+    #[must_use]
+    pub fn keeps(&self, y: [f64; 3], reach: f64) -> bool {
+        let room = self.radius - reach;
+        let d = [y[0] - self.centre[0], y[1] - self.centre[1], y[2] - self.centre[2]];
+        room > 0.0 && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < room * room
+    }
+
+    /// The boxes that may lie within `reach` of `y`: none where the ball keeps them away,
+    /// all of `boxes` otherwise.
+    #[inline(always)]
+    #[must_use]
+    pub fn near<'b>(&self, boxes: &'b [Furnishing], y: [f64; 3], reach: f64) -> &'b [Furnishing] {
+        if boxes.is_empty() || self.keeps(y, reach) {
+            &[]
+        } else {
+            boxes
+        }
+    }
 }
 
 #[cfg(test)]

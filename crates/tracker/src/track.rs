@@ -74,7 +74,7 @@ use rand_distr::{Distribution, LogNormal};
 use crate::air::{schiller_naumann, Aerodynamics};
 use crate::excursions::Excursions;
 use crate::flow::{Flow, FlowField};
-use crate::furnishing::Furnishing;
+use crate::furnishing::{Clearance, Furnishing};
 use crate::geometry::Wall;
 use crate::intermittency::Intermittent;
 use crate::noise::{particle_rng, Normals};
@@ -609,6 +609,9 @@ pub(crate) struct Flyer {
     /// the predictor reuses where the scene allows it ([`Prepared::reuse_scale`]); `None`
     /// before the first read, and where the read gives none (the intermittent model).
     scale: Option<[f64; 3]>,
+    /// A ball clear of the furnishings, from where it last came near one: where it keeps
+    /// them beyond every reach a step asks about, the step skips them.
+    pub clearance: Clearance,
 }
 
 impl Flyer {
@@ -630,6 +633,7 @@ impl Flyer {
             lift_coefficient,
             flow_cell: FlowCell::NONE,
             scale: None,
+            clearance: Clearance::NONE,
         }
     }
 
@@ -671,7 +675,8 @@ impl Flyer {
             None if p.boxes.is_empty() => fluid_velocity::<true>(field, p.size, x, &self.zeta),
             None => {
                 let mut zeta = self.zeta;
-                furnished_fluid_velocity(field, p.size, p.boxes, x, &mut zeta, None).0
+                let boxes = self.clearance.near(p.boxes, x.to_array(), field.turbulence_flat_from);
+                furnished_fluid_velocity(field, p.size, boxes, x, &mut zeta, None).0
             }
         };
         if let Some(mean) = &p.mean_flow {
@@ -681,7 +686,9 @@ impl Flyer {
         // Over h = dt / 2: x + target h + (v - target) tau (1 - exp(-h / tau)).
         let h = 0.5 * p.dt;
         let half = x + target * h + (v - target) * self.body.half_relax;
-        if inside(half, self.body.contact, p) {
+        // A box grown by `contact` along each axis reaches `sqrt(3) contact` at its corners.
+        let reach = 2.0 * self.body.contact;
+        if inside(half, self.body.contact, p, self.clearance.near(p.boxes, half.to_array(), reach)) {
             half
         } else {
             x
@@ -702,12 +709,19 @@ impl Flyer {
         let dt = p.dt;
         let (brownian_start, per_step) = normals_per_step(TURB, BROWN, EULER);
         let (x, v) = (self.x, self.v);
+        // A read skips the boxes beyond `turbulence_flat_from`: a ball that keeps them beyond
+        // it about `x` likely keeps them so about where this step reads and ends, too.
+        let reads = field.turbulence_flat_from;
+        if !p.boxes.is_empty() && !self.clearance.keeps(x.to_array(), reads) {
+            self.clearance = Clearance::around(x.to_array(), p.boxes);
+        }
         // Where the flow is read: the start of the step, or half a step on (`Scheme::Midpoint`).
         let at = if TURB && p.midpoint { self.half_step_position(p, x, v) } else { x };
         let z = self.draws.step(n, per_step);
         let (mut uf, scale) = if !p.boxes.is_empty() {
             let normals = TURB.then(|| [z[0], z[1], z[2]]);
-            let (u, scale) = furnished_fluid_velocity(field, p.size, p.boxes, at, &mut self.zeta, normals);
+            let boxes = self.clearance.near(p.boxes, at.to_array(), reads);
+            let (u, scale) = furnished_fluid_velocity(field, p.size, boxes, at, &mut self.zeta, normals);
             (u, Some(scale))
         } else if TURB {
             match &field.intermittent {
@@ -756,7 +770,7 @@ impl Flyer {
         let flight =
             Flight::<EULER> { x0: x, v0: v, v_inf, tau: body.tau, decay: body.decay, relax: body.relax, dt, bx, bv };
         let (x1, v1) = flight.end();
-        if inside(x1, body.contact, p) {
+        if inside(x1, body.contact, p, self.clearance.near(p.boxes, x1.to_array(), 2.0 * body.contact)) {
             self.x = wrap(x1, p);
             self.v = v1;
             if !(self.x.is_finite() && self.v.is_finite()) {

@@ -4,7 +4,7 @@
 use depo_wall_model::energy::{energy_loss, EnergyLoss};
 use glam::DVec3;
 
-use crate::furnishing::ROOM_SURFACES;
+use crate::furnishing::{Furnishing, ROOM_SURFACES};
 use crate::geometry::{Wall, WALL_AXES};
 use crate::openings::Opening;
 use crate::scene::WallBehaviour;
@@ -69,15 +69,17 @@ impl<const EULER: bool> Flight<EULER> {
     }
 }
 
+/// Whether a particle of contact radius `r` at `x` is clear of the domain's walls and of
+/// `boxes` (`p.boxes`, or those a [`Clearance`](crate::furnishing::Clearance) leaves).
 #[inline(always)]
-pub(super) fn inside(x: DVec3, r: f64, p: &Prepared<'_>) -> bool {
+pub(super) fn inside(x: DVec3, r: f64, p: &Prepared<'_>, boxes: &[Furnishing]) -> bool {
     // Periodic axes have no bounds: `[-inf, inf]`.
     let mut ok = true;
     for ((x, lower), upper) in x.to_array().into_iter().zip(p.lower).zip(p.upper) {
         ok &= (x >= lower + r) & (x <= upper - r);
     }
     // Clear of the furnishings too, each grown by `r` (none in most scenes).
-    ok && (p.boxes.is_empty() || !p.boxes.iter().any(|b| b.holds(x.to_array(), r)))
+    ok && (boxes.is_empty() || !boxes.iter().any(|b| b.holds(x.to_array(), r)))
 }
 
 /// The face of box `k` that a trajectory entering the box grown by `r` crosses, from `x`, a
@@ -154,7 +156,7 @@ pub(super) fn contacts<const EULER: bool>(
     let (mut last_wall, mut last_x) = (0, s.x);
     for _ in 0..MAX_CONTACTS {
         let (x1, v1) = flight.end();
-        if inside(x1, r, p) {
+        if inside(x1, r, p, p.boxes) {
             s.x = wrap(x1, p);
             s.v = v1;
             return AfterContacts::Airborne(s);

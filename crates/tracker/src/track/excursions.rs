@@ -11,6 +11,7 @@ use rand::RngExt;
 
 use crate::excursions::{crossing_class, Excursions, CROSSING_CLASSES, FURNISHINGS_CLASS, MAX_LEVELS};
 use crate::furnishing::Furnishing;
+use crate::geometry::{greater, lesser};
 use crate::noise::{branch_rng, particle_rng, Normals};
 
 use super::{normals_per_step, wall_distance, Body, Fate, Flyer, Prepared, Record, Step, WallTally};
@@ -129,25 +130,19 @@ fn overlap(a: f64, b: f64, [from, to]: [f64; 2]) -> f64 {
 }
 
 /// Distance from the surface of a particle of radius `r` at `x` to the nearest wall or
-/// furnishing, m (infinite in a domain without walls); a furnishing's is the Euclidean
-/// distance from `x` to the box.
+/// box of `boxes` (`p.boxes`, or those the particle's
+/// [`Clearance`](crate::furnishing::Clearance) leaves), m (infinite in
+/// a domain without walls); a furnishing's is the Euclidean distance from `x` to the box.
 #[inline]
-fn wall_gap(p: &Prepared<'_>, x: DVec3, r: f64) -> f64 {
-    let mut gap = f64::INFINITY;
-    for a in 0..3 {
-        if p.walled[a] {
-            gap = gap.min(x[a] - p.lower[a]).min(p.upper[a] - x[a]);
-        }
-    }
+fn wall_gap(p: &Prepared<'_>, boxes: &[Furnishing], x: DVec3, r: f64) -> f64 {
+    // Along an unwalled axis the bounds, and so the distances, are infinite.
+    let across = |a: usize| lesser(x[a] - p.lower[a], p.upper[a] - x[a]);
+    let mut gap = lesser(across(0), lesser(across(1), across(2)));
     // The boxes' squared distances, and a square root only where the nearest is nearer than
     // the walls (the same minimum: a root below `gap` needs a square at most `gap^2` rounded).
-    let mut squared = f64::INFINITY;
-    for b in p.boxes {
-        let outside = |a: usize| (b.low[a] - x[a]).max(x[a] - b.high[a]).max(0.0);
-        squared = squared.min((0..3).map(|a| outside(a).powi(2)).sum::<f64>());
-    }
+    let squared = boxes.iter().fold(f64::INFINITY, |s, b| lesser(s, b.squared_distance(x.to_array())));
     if squared <= gap * gap * (1.0 + 1e-12) {
-        gap = gap.min(squared.sqrt());
+        gap = lesser(gap, squared.sqrt());
     }
     gap - r
 }
@@ -187,7 +182,7 @@ fn box_free_flight_separation(b: &Furnishing, x: DVec3, v: DVec3, tau: f64) -> S
         };
         outside += 1;
         single = separation;
-        squares += separation.max(0.0).powi(2);
+        squares += greater(separation, 0.0).powi(2);
     }
     if outside == 1 {
         Separation::Face(single)
@@ -201,28 +196,34 @@ fn box_free_flight_separation(b: &Furnishing, x: DVec3, v: DVec3, tau: f64) -> S
 /// that wall; the smallest over the walls. This, rather than the plain distance, sets a
 /// branch's splitting level: an inertial particle close to a wall and moving away from it is
 /// far less likely to deposit than one coasting towards it.
+///
+/// The boxes farther than the layer beyond the particle's reach (`tau |v|`) are left out
+/// where its [`Clearance`](crate::furnishing::Clearance) shows them to be: they could only set a gap beyond the layer,
+/// whose splitting level, 0, is the walls' then too.
 #[inline]
-fn free_flight_gap(p: &Prepared<'_>, flyer: &Flyer) -> f64 {
+fn free_flight_gap(p: &Prepared<'_>, excursions: &Excursions, flyer: &Flyer) -> f64 {
     let (x, v, r, tau) = (flyer.x, flyer.v, flyer.body.contact, flyer.body.tau);
-    let mut gap = f64::INFINITY;
-    for a in 0..3 {
-        if p.walled[a] {
-            let lower = x[a] - p.lower[a] - r + tau * v[a].min(0.0);
-            let upper = p.upper[a] - x[a] - r - tau * v[a].max(0.0);
-            gap = gap.min(lower).min(upper);
-        }
-    }
+    // `|v|` bounded by the sum of its components' sizes.
+    let reach = excursions.layer + r + tau * (v.x.abs() + v.y.abs() + v.z.abs());
+    let boxes = flyer.clearance.near(p.boxes, x.to_array(), reach);
+    // Along an unwalled axis the bounds, and so the gaps, are infinite.
+    let across = |a: usize| {
+        let lower = x[a] - p.lower[a] - r + tau * lesser(v[a], 0.0);
+        let upper = p.upper[a] - x[a] - r - tau * greater(v[a], 0.0);
+        lesser(lower, upper)
+    };
+    let mut gap = lesser(across(0), lesser(across(1), across(2)));
     let mut squared = f64::INFINITY;
-    for b in p.boxes {
+    for b in boxes {
         match box_free_flight_separation(b, x, v, tau) {
-            Separation::Face(face) => gap = gap.min(face - r),
-            Separation::Squared(squares) => squared = squared.min(squares),
+            Separation::Face(face) => gap = lesser(gap, face - r),
+            Separation::Squared(squares) => squared = lesser(squared, squares),
         }
     }
     // A root only where an edge or corner may be the nearest (as in `wall_gap`).
     let bound = gap + r;
     if bound > 0.0 && squared <= bound * bound * (1.0 + 1e-12) {
-        gap = gap.min(squared.sqrt() - r);
+        gap = lesser(gap, squared.sqrt() - r);
     }
     gap
 }
@@ -238,8 +239,7 @@ fn nearest_class(p: &Prepared<'_>, x: DVec3) -> usize {
         }
     }
     for b in p.boxes {
-        let outside = |a: usize| (b.low[a] - x[a]).max(x[a] - b.high[a]).max(0.0);
-        if (0..3).map(|a| outside(a).powi(2)).sum::<f64>() < nearest.1 * nearest.1 {
+        if b.squared_distance(x.to_array()) < nearest.1 * nearest.1 {
             return FURNISHINGS_CLASS;
         }
     }
@@ -258,7 +258,10 @@ enum Zone {
 
 #[inline]
 fn zone(p: &Prepared<'_>, excursions: &Excursions, flyer: &Flyer) -> Zone {
-    if wall_gap(p, flyer.x, flyer.body.contact) < excursions.layer {
+    // Boxes farther than the layer cannot bring the gap within it.
+    let r = flyer.body.contact;
+    let boxes = flyer.clearance.near(p.boxes, flyer.x.to_array(), excursions.layer + r);
+    if wall_gap(p, boxes, flyer.x, r) < excursions.layer {
         return Zone::Inside;
     }
     let Some(sweeps) = &excursions.sweeps else { return Zone::Outside };
@@ -325,7 +328,7 @@ pub(crate) fn run_with_excursions<
                     // crossing's class by the surface nearest its end.
                     let class = nearest_class(p, flyer.x);
                     let sampling = match &excursions.sweeps {
-                        Some(s) if wall_gap(p, flyer.x, flyer.body.contact) >= excursions.layer => s.sampling,
+                        Some(s) if wall_gap(p, p.boxes, flyer.x, flyer.body.contact) >= excursions.layer => s.sampling,
                         _ => excursions.sampling * excursions.class_sampling[class],
                     };
                     // `sampling` excursions per entry on average: its whole part, and one more
@@ -400,7 +403,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
     let mut stack = Vec::new();
     *copies += 1;
     let flyer = start.with_streams(Normals::from_rng(&mut branch_rng(seed, id, *copies)), next, per_step);
-    let level = splitting.level(free_flight_gap(p, &flyer));
+    let level = splitting.level(free_flight_gap(p, excursions, &flyer));
     let first = Branch { flyer, weight: 1.0 / sampling, level: 0, next, clock: next };
     let target = first.weight * splitting.weight(level);
     window_weight(first, level, target, &mut stack, (seed, id, copies, per_step), roulette, stats, sampling);
@@ -410,7 +413,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
             stats.truncated += weight;
             continue;
         }
-        let mut gap = free_flight_gap(p, &flyer);
+        let mut gap = free_flight_gap(p, excursions, &flyer);
         let mut n = next;
         loop {
             // A coarse step where it cannot reach a wall and the turbulence is smooth enough
@@ -445,7 +448,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
                     if zone(p, excursions, &flyer) == Zone::Outside {
                         break;
                     }
-                    gap = free_flight_gap(p, &flyer);
+                    gap = free_flight_gap(p, excursions, &flyer);
                     let new_level = splitting.level(gap);
                     // `level` is the level whose weight the branch carries. A branch splits as soon
                     // as it goes deeper, but plays roulette only two levels out: a branch
@@ -581,7 +584,7 @@ mod tests {
             flyer.x.z = (gap_plus + radius_plus) * unit;
             flyer.v = DVec3::new(0.0, 0.0, v_plus * u_star);
             flyer.zeta = [1.0; 3];
-            coarse.allows(flyer, free_flight_gap(&p, flyer))
+            coarse.allows(flyer, free_flight_gap(&p, p.scene.excursions.as_ref().unwrap(), flyer))
         };
         assert!(allows(&mut flyer, 0.5, 0.0), "0.5 wall units off, at rest");
         assert!(allows(&mut flyer, 2.0, 0.0), "2 wall units off, at rest");
@@ -591,6 +594,79 @@ mod tests {
         assert!(!allows(&mut flyer, 0.004, 0.0), "0.004 wall units off: a coarse step could reach the wall");
         assert!(!allows(&mut flyer, 0.5, -2.0), "0.5 wall units off, coasting at 2 u* towards the wall");
         assert!(!allows(&mut flyer, 4.0 - radius_plus, 0.0), "y+ 4: the rms changes too fast for a coarse step");
+    }
+
+    /// Every check a step or an excursion asks with the boxes a particle's clearance leaves
+    /// gives what it gives with all boxes: the fluid read (bit for bit), the contact test,
+    /// the layer's test and the splitting level. A table and a shelf by a wall (as in
+    /// `examples/room.toml`); flyers at random points, each with the ball from a random point
+    /// up to 0.6 m off, so that the balls' edges fall near and far from the boxes.
+    #[test]
+    fn boxes_a_clearance_leaves_out_change_no_read_contact_gap_or_level() {
+        use super::super::contacts::inside;
+        use super::super::fluid::furnished_fluid_velocity;
+        use crate::furnishing::Clearance;
+        use rand::RngExt;
+
+        let mut scene = crate::Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 10.0);
+        scene.flow = crate::Flow::indoor_room();
+        scene.brownian = true;
+        scene.scheme = crate::Scheme::Midpoint;
+        scene.furnishings =
+            vec![Furnishing::new([1.0, 1.0, 0.7], [2.2, 1.8, 0.75]), Furnishing::new([3.5, 0.2, 0.3], [3.9, 2.8, 2.0])];
+        let nu = scene.air.kinematic_viscosity();
+        scene.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0));
+        let injection = crate::Injection::new(1, crate::SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
+        let p = Prepared::new(&scene, &injection).unwrap();
+        let excursions = scene.excursions.as_ref().unwrap();
+        let (layer, reads) = (excursions.layer, p.field.turbulence_flat_from);
+        let mut flyer = Flyer::inject(&p, 0, true, true);
+        let r = flyer.body.contact;
+        let mut rng = particle_rng(11, 0);
+        let (mut skipped, mut kept) = (0, 0);
+        for _ in 0..50_000 {
+            let x: [f64; 3] = std::array::from_fn(|a| rng.random_range(0.001..p.size[a] - 0.001));
+            let centre: [f64; 3] = std::array::from_fn(|a| x[a] + rng.random_range(-0.6..0.6));
+            let clearance = Clearance::around(centre, p.boxes);
+            let all = Clearance::NONE;
+            flyer.x = DVec3::from_array(x);
+            flyer.v = DVec3::from_array(std::array::from_fn(|_| rng.random_range(-0.05..0.05)));
+            let zeta: [f64; 3] = std::array::from_fn(|_| rng.random_range(-3.0..3.0));
+            let normals = Some(std::array::from_fn(|_| rng.random_range(-3.0..3.0)));
+
+            let near = clearance.near(p.boxes, x, reads);
+            let (mut z_near, mut z_all) = (zeta, zeta);
+            let read_near = furnished_fluid_velocity(&p.field, p.size, near, flyer.x, &mut z_near, normals);
+            let read_all = furnished_fluid_velocity(&p.field, p.size, p.boxes, flyer.x, &mut z_all, normals);
+            assert_eq!((read_near, z_near), (read_all, z_all), "read at {x:?}");
+
+            // A box grown by `r` along each axis reaches `sqrt(3) r` at its corners.
+            let near = clearance.near(p.boxes, x, 2.0 * r);
+            assert_eq!(inside(flyer.x, r, &p, near), inside(flyer.x, r, &p, p.boxes), "contact at {x:?}");
+
+            let near = clearance.near(p.boxes, x, layer + r);
+            assert_eq!(wall_gap(&p, near, flyer.x, r) < layer, wall_gap(&p, p.boxes, flyer.x, r) < layer);
+
+            flyer.clearance = all;
+            let level = excursions.splitting.level(free_flight_gap(&p, excursions, &flyer));
+            flyer.clearance = clearance;
+            assert_eq!(excursions.splitting.level(free_flight_gap(&p, excursions, &flyer)), level, "level at {x:?}");
+
+            if near.is_empty() {
+                skipped += 1;
+            } else {
+                kept += 1;
+            }
+        }
+        // Both cases well sampled.
+        assert!(skipped > 5000 && kept > 5000, "{skipped} {kept}");
+        // Off a box's corner along its diagonal, 0.9 `r` beyond each face: `sqrt(3) 0.9 r` away,
+        // but within the box grown by `r`. A ball of that radius must not leave the box out.
+        let corner = DVec3::from_array(p.boxes[0].low) - DVec3::splat(0.9 * r);
+        let clearance = Clearance::around(corner.to_array(), p.boxes);
+        assert!(!inside(corner, r, &p, p.boxes));
+        assert!(!inside(corner, r, &p, clearance.near(p.boxes, corner.to_array(), 2.0 * r)));
+        assert!(clearance.near(p.boxes, corner.to_array(), r).is_empty(), "a reach of r alone would miss it");
     }
 
     #[test]

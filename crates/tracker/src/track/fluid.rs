@@ -49,7 +49,7 @@ pub(super) fn stress_part(coupling: &Table, size: [f64; 3], x: DVec3, zeta_norma
 /// by the room's walls only (see the comment below): a box's faces shape the component
 /// across them, not those along them. Also returns each component's scale `g sigma` there,
 /// what the midpoint scheme's next predictor reuses in a room (`Flyer::half_step_position`).
-#[inline]
+#[inline(always)]
 pub(super) fn furnished_fluid_velocity(
     field: &FlowField,
     size: [f64; 3],

@@ -173,7 +173,7 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
 
         let mut ok = [true; WIDTH];
         for l in 0..WIDTH {
-            ok[l] = inside(DVec3::new(x1[0][l], x1[1][l], x1[2][l]), radius[l], p);
+            ok[l] = inside(DVec3::new(x1[0][l], x1[1][l], x1[2][l]), radius[l], p, p.boxes);
         }
 
         // What each particle does with its step.
