@@ -129,10 +129,10 @@ fn overlap(a: f64, b: f64, [from, to]: [f64; 2]) -> f64 {
     (b.min(to) - a.max(from)).max(0.0)
 }
 
-/// Distance from the surface of a particle of radius `r` at `x` to the nearest wall or
-/// box of `boxes` (`p.boxes`, or those the particle's
-/// [`Clearance`](crate::furnishing::Clearance) leaves), m (infinite in
-/// a domain without walls); a furnishing's is the Euclidean distance from `x` to the box.
+/// Distance from the surface of a particle of radius `r` at `x` to the nearest wall or box
+/// of `boxes` (`p.boxes`, or those the particle's [`Clearance`](crate::furnishing::Clearance)
+/// leaves), m (infinite in a domain without walls); a box's is the Euclidean distance from
+/// `x` to it.
 #[inline]
 fn wall_gap(p: &Prepared<'_>, boxes: &[Furnishing], x: DVec3, r: f64) -> f64 {
     // Along an unwalled axis the bounds, and so the distances, are infinite.
@@ -198,8 +198,8 @@ fn box_free_flight_separation(b: &Furnishing, x: DVec3, v: DVec3, tau: f64) -> S
 /// far less likely to deposit than one coasting towards it.
 ///
 /// The boxes farther than the layer beyond the particle's reach (`tau |v|`) are left out
-/// where its [`Clearance`](crate::furnishing::Clearance) shows them to be: they could only set a gap beyond the layer,
-/// whose splitting level, 0, is the walls' then too.
+/// where its [`Clearance`](crate::furnishing::Clearance) shows them to be: they could only
+/// set a gap beyond the layer, whose splitting level, 0, is the walls' then too.
 #[inline]
 fn free_flight_gap(p: &Prepared<'_>, excursions: &Excursions, flyer: &Flyer) -> f64 {
     let (x, v, r, tau) = (flyer.x, flyer.v, flyer.body.contact, flyer.body.tau);
