@@ -735,7 +735,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 furnishings_table(&rows, &study);
             }
             out!(
-                "{ERROR_NOTE} With it, that duration: {:.0} wall time units, doubled while a pilot run gave up more than {:.1} % of the weight, up to {} times that.",
+                "{ERROR_NOTE} With it, that duration: {:.0} wall time units, doubled while a pilot run or the size's run gave up more than {:.1} % of the weight, up to {} times that.",
                 studies::ROOM_LONGEST_EXCURSION,
                 100.0 * studies::LONGEST_SHARE,
                 1 << studies::LONGEST_DOUBLINGS
