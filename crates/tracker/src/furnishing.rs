@@ -264,8 +264,9 @@ pub(crate) fn nearest_surfaces_within(
 }
 
 /// A ball that no furnishing reaches into: around `centre`, of radius the distance from it
-/// to the nearest box. Each particle carries one ([`Clearance::around`] where it last came
-/// near a box), and its step asks it which boxes can lie within some reach of a point
+/// to the nearest box. Each particle carries one ([`Clearance::around`] a step's start,
+/// made anew wherever the old one no longer keeps the boxes beyond the turbulence read's
+/// reach), and its step asks it which boxes can lie within some reach of a point
 /// ([`Clearance::near`]): far from every box (most of a room's air, and most of its walls)
 /// none can, the boxes' loops are skipped, and the step is a bare room's, with the same
 /// numbers, bit for bit, as with the loops.

@@ -609,8 +609,9 @@ pub(crate) struct Flyer {
     /// the predictor reuses where the scene allows it ([`Prepared::reuse_scale`]); `None`
     /// before the first read, and where the read gives none (the intermittent model).
     scale: Option<[f64; 3]>,
-    /// A ball clear of the furnishings, from where it last came near one: where it keeps
-    /// them beyond every reach a step asks about, the step skips them.
+    /// A ball clear of the furnishings, made anew at a step's start wherever the old one no
+    /// longer keeps them beyond the turbulence read's reach: where it keeps them beyond every
+    /// reach a step asks about, the step skips them.
     pub clearance: Clearance,
 }
 
