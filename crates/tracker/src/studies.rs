@@ -49,7 +49,8 @@ pub struct RoomStudy {
     /// on the particles it adds, [`topped_up`]; in the last, again on all), but at most four
     /// times the particles run in all but the last. With excursions, those particles start
     /// fewer excursions per crossing where the figures they resolve have room to spare, as
-    /// the first particles show ([`crate::allocation`]). `None`: `count` particles, whatever the errors.
+    /// the first particles show ([`crate::allocation`]). `None`: `count` particles, whatever
+    /// the errors.
     pub target_error: Option<f64>,
     /// The most particles per diameter with `target_error`.
     pub max_count: usize,
@@ -162,8 +163,9 @@ pub const TARGET_MARGIN: f64 = 1.15;
 /// that duration, when its pilot or a size's whole run gives up more ([`lengthened`]; the
 /// pilot runs again, the size starts afresh): half of [`TARGET_ERROR`], so that what giving
 /// them up may miss (at most that share, had every branch given up deposited) stays within
-/// half a resolved figure's error. The default room gives up 0.3-1.3 % at 0.1-1 um; the measured rooms of
-/// Thatcher et al. (2002), at their lower friction velocities, up to 17 % at 0.5 um.
+/// half a resolved figure's error. The default room gives up 0.3-1.3 % at 0.1-1 um; the
+/// measured rooms of Thatcher et al. (2002), at their lower friction velocities, up to 17 %
+/// at 0.5 um.
 pub const LONGEST_SHARE: f64 = 0.025;
 
 /// The most times a room study doubles its excursions' longest duration (from
