@@ -479,15 +479,16 @@ impl RoomStudy {
             let mut longest = ROOM_LONGEST_EXCURSION;
             let mut calibration_seconds = 0.0;
             let (scene, result) = loop {
-                let (mut scene, mut duration) = (plain.clone(), most);
-                if self.excursions {
+                let (mut scene, duration) = if self.excursions {
                     let pilot = (self.count / PILOT.0).max(1);
-                    let seconds;
-                    (scene, duration, seconds) =
+                    let (scene, duration, seconds) =
                         with_excursions(plain.clone(), &injection, pilot, 0.05, (longest, most), 16, None, 1)
                             .map_err(for_diameters)?;
                     calibration_seconds += seconds;
-                }
+                    (scene, duration)
+                } else {
+                    (plain.clone(), most)
+                };
                 let start = std::time::Instant::now();
                 let mut result = run(&scene, &injection).map_err(for_diameters)?;
                 if let Some(target) = self.target_error {
