@@ -74,17 +74,16 @@ struct Report<'a> {
 }
 
 pub fn run(args: &ChannelArgs) -> Result<(), Error> {
-    let mut study = scene_file::channel(args.scene.as_deref())?;
+    let (mut study, source) = scene_file::channel(args.scene.as_deref())?;
     if let Some(list) = &args.tau_plus {
         if let Some(bad) = list.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
             return Err(format!("--tau-plus: {bad} is not a positive number"));
         }
         study.tau_plus.clone_from(list);
     }
-    let where_ = args.scene.as_ref().map_or("the built-in channel".to_string(), |p| p.display().to_string());
     let progress = progress_bar(study.tau_plus.len(), "tau+")?;
     let start = std::time::Instant::now();
-    let points = study.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?;
+    let points = study.run(|done| progress.set_position(done as u64)).map_err(|e| source.scene_error(&e))?;
     progress.finish_and_clear();
     let seconds = start.elapsed().as_secs_f64();
     let u_star = study.scene.flow.friction_velocity().unwrap_or(0.0);

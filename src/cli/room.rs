@@ -487,11 +487,10 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
 pub fn run(args: &RoomArgs) -> Result<(), Error> {
     let scene = scene_file::room_scene(args.scene.as_deref())?;
     let mut study: RoomStudy = scene.study;
-    let where_ = args.scene.as_ref().map_or("the built-in room".to_string(), |p| p.display().to_string());
     // A size distribution runs the study at its bins instead of the study's diameters.
     let distribution = scene.distribution.map(|distribution| DistributionStudy { study: study.clone(), distribution });
     let runs = match &distribution {
-        Some(d) => d.bins().map_err(|e| format!("{where_}: {e}"))?.0.len(),
+        Some(d) => d.bins().map_err(|e| scene.source.scene_error(&e))?.0.len(),
         None => study.diameters.len(),
     };
     let progress = progress_bar(runs, "sizes")?;
@@ -499,10 +498,10 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
     let (points, balance) = match &distribution {
         Some(d) => {
             let (points, balance) =
-                d.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?;
+                d.run(|done| progress.set_position(done as u64)).map_err(|e| scene.source.scene_error(&e))?;
             (points, Some(balance))
         }
-        None => (study.run(|done| progress.set_position(done as u64)).map_err(|e| format!("{where_}: {e}"))?, None),
+        None => (study.run(|done| progress.set_position(done as u64)).map_err(|e| scene.source.scene_error(&e))?, None),
     };
     progress.finish_and_clear();
     if distribution.is_some() {

@@ -11,7 +11,7 @@ use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::openings;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
 use depo::tracker::{
-    Air, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, Scheme, WallBehaviour,
+    Air, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, SceneError, Scheme, WallBehaviour,
 };
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
@@ -151,13 +151,15 @@ enum EfficiencyFile {
     Curve(Vec<[f64; 2]>),
 }
 
-/// The filter of `key` in `path` as [`FilterEfficiency`], or an error naming the key.
-fn filter_efficiency(path: &Path, key: &str, file: &EfficiencyFile) -> Result<FilterEfficiency, Error> {
+/// The filter of `ventilation.{key}` as [`FilterEfficiency`], or an error naming the file, the
+/// key and its line.
+fn filter_efficiency(src: &SceneSource, key: &str, file: &EfficiencyFile) -> Result<FilterEfficiency, Error> {
     let curve = match file {
         EfficiencyFile::One(eta) => FilterEfficiency::constant(*eta),
         EfficiencyFile::Curve(points) => FilterEfficiency::new(points.iter().map(|&[d, eta]| (d, eta)).collect()),
     };
-    curve.map_err(|e| format!("{}: `ventilation.{key}`: {} = {} {}", path.display(), e.field, e.value, e.requirement))
+    let key = format!("ventilation.{key}");
+    curve.map_err(|e| src.at(&[&key], format!("`{key}`: {} = {} {}", e.field, e.value, e.requirement)))
 }
 
 /// One `[[furnishings]]` entry: a box and its faces' behaviour (the keys of a `[walls.*]`
@@ -250,18 +252,91 @@ struct ChannelFile {
     run: RunFile,
 }
 
-/// Reads and parses `path`; a TOML error names the file, the line and the key.
-fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<T, Error> {
-    read_with_text(path).map(|(file, _)| file)
+/// Where a scene came from, for its errors: a file's path and text (to give the line of a
+/// key), or what stands in for a file, `the built-in room`, which has no lines.
+pub struct SceneSource {
+    /// The file's path as errors show it, or `the built-in ...`.
+    name: String,
+    /// The file's text; empty for a built-in scene.
+    text: String,
 }
 
-/// The line (from 1) of a byte offset into `text`.
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
+impl SceneSource {
+    /// A built-in scene's: `name` stands in for the file, and no key has a line.
+    fn built_in(name: &str) -> Self {
+        Self { name: name.to_string(), text: String::new() }
+    }
+
+    /// `message` as the TOML errors put it, `FILE line N: message`, with the line of the
+    /// first of `keys` (dotted, as [`line_of_key`] takes them) the file gives; `FILE: message`
+    /// where it gives none of them (their values are the defaults).
+    fn at(&self, keys: &[&str], message: impl std::fmt::Display) -> Error {
+        let line = toml::de::DeTable::parse(&self.text)
+            .ok()
+            .and_then(|root| keys.iter().find_map(|key| line_of_key(&self.text, root.get_ref(), key)));
+        match line {
+            Some(line) => format!("{} line {line}: {message}", self.name),
+            None => format!("{}: {message}", self.name),
+        }
+    }
+
+    /// `message` at the line of the byte `offset` into the file (a span of its values).
+    fn at_offset(&self, offset: usize, message: impl std::fmt::Display) -> Error {
+        format!("{} line {}: {message}", self.name, line_of(&self.text, offset))
+    }
+
+    /// The error of a run of this scene, with the line of the key its field names where the
+    /// file gives that key. [`Scene::validate`] and the studies name a field as a scene holds
+    /// it (`dt`, `size.x`, `air_exchange`): these are the keys a file sets it with, a room's or
+    /// a channel's (a file can only hold its own kind's keys).
+    pub fn scene_error(&self, e: &SceneError) -> Error {
+        let keys: &[&str] = match e.field.as_str() {
+            "size.x" | "size.y" | "size.z" => &["room.size"],
+            "dt" => &["run.dt", "run.dt_plus"],
+            "duration" => &["run.duration", "run.duration_plus"],
+            "average_from" => &["run.transient"],
+            "gravity" => &["run.gravity"],
+            "lift" => &["run.lift"],
+            "near_wall" => &["run.near_wall"],
+            "air_exchange" => &["ventilation.air_changes_per_hour"],
+            "penetration" => &["ventilation.penetration"],
+            "supply_share" => &["ventilation.supply_share"],
+            "recirculation" => &["ventilation.recirculation_per_hour"],
+            "flow.friction_velocity" => &["flow.friction_velocity", "channel.friction_velocity"],
+            "flow.core_rms" => &["flow.core_rms", "flow.core_tke"],
+            "particles.diameter" => &["particles.diameters", "particles.tau_plus"],
+            field => &[field],
+        };
+        self.at(keys, e)
+    }
 }
 
-/// [`read`], and the file's text (for the lines of its values).
-fn read_with_text<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<(T, String), Error> {
+/// The line (from 1) of the dotted `key` in a TOML document `root` parsed from `text`
+/// (`run.dt`, `walls.floor.preset`, `furnishings[1].top`; `[i]` is an array's entry): the
+/// line of the key itself (of an `[[array]]` entry, its header's), `None` where the document
+/// does not give the key.
+fn line_of_key(text: &str, root: &toml::de::DeTable<'_>, key: &str) -> Option<usize> {
+    let mut table = root;
+    let mut found: Option<(usize, &toml::de::DeValue<'_>)> = None;
+    for part in key.split('.') {
+        if let Some((_, value)) = found {
+            table = value.as_table()?;
+        }
+        let (name, indices) = part.split_once('[').map_or((part, ""), |(name, rest)| (name, rest));
+        let (k, v) = table.get_key_value(name)?;
+        let (mut offset, mut value) = (k.span().start, v.get_ref());
+        for index in indices.split('[').filter(|i| !i.is_empty()) {
+            let entry = value.as_array()?.get(index.trim_end_matches(']').parse::<usize>().ok()?)?;
+            (offset, value) = (entry.span().start, entry.get_ref());
+        }
+        found = Some((offset, value));
+    }
+    found.map(|(offset, _)| line_of(text, offset))
+}
+
+/// Reads and parses `path`, keeping its text for the lines of later errors; a TOML error
+/// names the file, the line and the key.
+fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<(T, SceneSource), Error> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let file = toml::from_str(&text).map_err(|e| {
         let line = e.span().map(|s| line_of(&text, s.start));
@@ -271,18 +346,23 @@ fn read_with_text<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<(T, Strin
             None => format!("{}: {message}", path.display()),
         }
     })?;
-    Ok((file, text))
+    Ok((file, SceneSource { name: path.display().to_string(), text }))
+}
+
+/// The line (from 1) of a byte offset into `text`.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
 /// The value a `run` key names among `options`, `None` where the file leaves the key out; any
 /// other name is an error listing the options.
-fn named<T: Copy>(path: &Path, key: &str, name: Option<&str>, options: &[(&str, T)]) -> Result<Option<T>, Error> {
+fn named<T: Copy>(src: &SceneSource, key: &str, name: Option<&str>, options: &[(&str, T)]) -> Result<Option<T>, Error> {
     let Some(name) = name else { return Ok(None) };
     match options.iter().find(|(n, _)| *n == name) {
         Some(&(_, value)) => Ok(Some(value)),
         None => {
             let names: Vec<String> = options.iter().map(|(n, _)| format!("\"{n}\"")).collect();
-            Err(format!("{}: `{key}` = \"{name}\": expected {}", path.display(), names.join(" or ")))
+            Err(src.at(&[key], format!("`{key}` = \"{name}\": expected {}", names.join(" or "))))
         }
     }
 }
@@ -290,13 +370,13 @@ fn named<T: Copy>(path: &Path, key: &str, name: Option<&str>, options: &[(&str, 
 /// The run's named choices where the file makes them: the drag law, the step (the studies offer
 /// the exponential scheme and its midpoint form; Euler is for the integrator benchmark), the
 /// near-wall model and what it steps.
-fn apply_run_choices(path: &Path, scene: &mut Scene, run: &RunFile) -> Result<(), Error> {
+fn apply_run_choices(src: &SceneSource, scene: &mut Scene, run: &RunFile) -> Result<(), Error> {
     let drag = [("stokes", Drag::Stokes), ("schiller-naumann", Drag::SchillerNaumann)];
-    set(&mut scene.drag, named(path, "run.drag", run.drag.as_deref(), &drag)?);
+    set(&mut scene.drag, named(src, "run.drag", run.drag.as_deref(), &drag)?);
     let schemes = [("exponential", Scheme::Exponential), ("midpoint", Scheme::Midpoint)];
-    set(&mut scene.scheme, named(path, "run.scheme", run.scheme.as_deref(), &schemes)?);
+    set(&mut scene.scheme, named(src, "run.scheme", run.scheme.as_deref(), &schemes)?);
     let models = [("gaussian", NearWall::Gaussian), ("intermittent", NearWall::Intermittent)];
-    set(&mut scene.near_wall, named(path, "run.near_wall", run.near_wall.as_deref(), &models)?);
+    set(&mut scene.near_wall, named(src, "run.near_wall", run.near_wall.as_deref(), &models)?);
     Ok(())
 }
 
@@ -314,9 +394,13 @@ fn apply_air(scene: &mut Scene, air: &AirFile) {
 }
 
 /// The behaviour `file` gives a surface whose keys start `prefix` (`walls.floor`,
-/// `furnishings[0].top`).
-fn wall_behaviour(prefix: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
+/// `furnishings[0].top`); an error names the file and the line of the key at fault, or of the
+/// surface where a key is missing.
+fn wall_behaviour(src: &SceneSource, prefix: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
     let key = |k: &str| format!("{prefix}.{k}");
+    // The line of the surface's key `k`, or of the surface.
+    let at = |k: &str, message: String| src.at(&[&key(k), prefix], message);
+    let at_surface = |message: String| src.at(&[prefix], message);
     let constants = [file.k, file.kappa, file.vc, file.p, file.q];
     let has_constants = constants.iter().any(Option::is_some);
     let default = if file.preset.is_some() || has_constants { "law" } else { "sink" };
@@ -326,45 +410,55 @@ fn wall_behaviour(prefix: &str, file: &WallFile) -> Result<WallBehaviour, Error>
         "law" => {
             let mut law = match (file.preset.as_deref(), has_constants) {
                 (Some(_), true) => {
-                    return Err(format!("`{prefix}`: give a `preset` or the constants `k`, `kappa`, `vc`, not both"))
+                    return Err(at_surface(format!(
+                        "`{prefix}`: give a `preset` or the constants `k`, `kappa`, `vc`, not both"
+                    )))
                 }
-                (Some(id), false) => WallLaw::preset(id).map_err(|e| format!("`{}`: {e}", key("preset")))?,
+                (Some(id), false) => {
+                    WallLaw::preset(id).map_err(|e| at("preset", format!("`{}`: {e}", key("preset"))))?
+                }
                 (None, true) => {
                     let need = |v: Option<f64>, k: &str| {
-                        v.ok_or_else(|| format!("`{}` is needed with the law's constants", key(k)))
+                        v.ok_or_else(|| at_surface(format!("`{}` is needed with the law's constants", key(k))))
                     };
                     let (k, kappa, vc) = (need(file.k, "k")?, need(file.kappa, "kappa")?, need(file.vc, "vc")?);
                     let params = LawParams::symmetric(k, kappa, vc, file.p.unwrap_or(1.0), file.q.unwrap_or(1.0));
-                    WallLaw::new(params).map_err(|e| format!("`{prefix}`: {e}"))?
+                    WallLaw::new(params).map_err(|e| at_surface(format!("`{prefix}`: {e}")))?
                 }
                 (None, false) => {
-                    return Err(format!(
+                    return Err(at_surface(format!(
                         "`{}` (or the constants `k`, `kappa`, `vc`) is needed for a wall law",
                         key("preset")
-                    ))
+                    )))
                 }
             };
             if let Some(mu) = file.mu {
-                law = WallLaw::new(law.params().with_friction(mu)).map_err(|e| format!("`{}`: {e}", key("mu")))?;
+                law = WallLaw::new(law.params().with_friction(mu))
+                    .map_err(|e| at("mu", format!("`{}`: {e}", key("mu"))))?;
             }
             let size = match file.size_exponent {
                 None => None,
                 Some(alpha) => {
-                    let d_ref = file
-                        .reference_diameter
-                        .ok_or_else(|| format!("`{}` is needed with a size exponent", key("reference_diameter")))?;
-                    Some(SizeDependence::new(d_ref, alpha).map_err(|e| format!("`{prefix}`: {e}"))?)
+                    let d_ref = file.reference_diameter.ok_or_else(|| {
+                        at("size_exponent", format!("`{}` is needed with a size exponent", key("reference_diameter")))
+                    })?;
+                    let size = SizeDependence::new(d_ref, alpha);
+                    Some(size.map_err(|e| at("size_exponent", format!("`{prefix}`: {e}")))?)
                 }
             };
             Ok(WallBehaviour::Law { law, size })
         }
-        other => Err(format!("`{}` = \"{other}\": expected \"sink\", \"reflect\" or \"law\"", key("behaviour"))),
+        other => Err(at(
+            "behaviour",
+            format!("`{}` = \"{other}\": expected \"sink\", \"reflect\" or \"law\"", key("behaviour")),
+        )),
     }
 }
 
-fn apply_walls(scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
+/// The `[walls]` of a scene onto its walls: `all` first, then each wall's own table.
+fn apply_walls(src: &SceneSource, scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
     if let Some(all) = &walls.all {
-        let behaviour = wall_behaviour("walls.all", all)?;
+        let behaviour = wall_behaviour(src, "walls.all", all)?;
         scene.walls.iter_mut().for_each(|w| *w = behaviour);
     }
     let geometry = scene.geometry;
@@ -381,17 +475,21 @@ fn apply_walls(scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
             _ => &walls.upper,
         };
         if let Some(file) = file {
-            scene.walls[wall.id] = wall_behaviour(&format!("walls.{name}"), file)?;
+            scene.walls[wall.id] = wall_behaviour(src, &format!("walls.{name}"), file)?;
         }
     }
     let room_only = [&walls.floor, &walls.ceiling, &walls.x0, &walls.x1, &walls.y0, &walls.y1];
     let channel_only = [&walls.lower, &walls.upper];
-    let foreign = match geometry {
-        Geometry::Room { .. } => channel_only.iter().any(|w| w.is_some()),
-        Geometry::Channel { .. } => room_only.iter().any(|w| w.is_some()),
+    // The other kind's walls, by key.
+    let (foreign, keys) = match geometry {
+        Geometry::Room { .. } => (channel_only.iter().any(|w| w.is_some()), &["walls.lower", "walls.upper"][..]),
+        Geometry::Channel { .. } => (
+            room_only.iter().any(|w| w.is_some()),
+            &["walls.floor", "walls.ceiling", "walls.x0", "walls.x1", "walls.y0", "walls.y1"][..],
+        ),
     };
     if foreign {
-        return Err("`walls`: a room has floor, ceiling, x0, x1, y0, y1; a channel has lower and upper".into());
+        return Err(src.at(keys, "`walls`: a room has floor, ceiling, x0, x1, y0, y1; a channel has lower and upper"));
     }
     Ok(())
 }
@@ -400,12 +498,11 @@ fn apply_walls(scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
 /// and above its `low` corner, none overlapping another; errors name the file, the line and
 /// the key.
 fn furnishings(
-    path: &Path,
-    text: &str,
+    src: &SceneSource,
     entries: &[Spanned<FurnishingFile>],
     size: [f64; 3],
 ) -> Result<Vec<Furnishing>, Error> {
-    let at = |offset: usize, message: String| format!("{} line {}: {message}", path.display(), line_of(text, offset));
+    let at = |offset: usize, message: String| src.at_offset(offset, message);
     let mut boxes: Vec<Furnishing> = Vec::new();
     for (k, entry) in entries.iter().enumerate() {
         let f = entry.get_ref();
@@ -436,14 +533,13 @@ fn furnishings(
         if let Some(other) = boxes.iter().position(|b| b.overlaps(&furnishing)) {
             return Err(at(entry.span().start, format!("`furnishings[{k}]` overlaps `furnishings[{other}]`")));
         }
-        let face_error = |e: Error| at(entry.span().start, e);
         if let Some(all) = &f.all {
-            furnishing.faces = [wall_behaviour(&format!("furnishings[{k}].all"), all).map_err(face_error)?; 6];
+            furnishing.faces = [wall_behaviour(src, &format!("furnishings[{k}].all"), all)?; 6];
         }
         for (face, file) in [&f.bottom, &f.top, &f.x0, &f.x1, &f.y0, &f.y1].into_iter().enumerate() {
             if let Some(file) = file {
                 let prefix = format!("furnishings[{k}].{}", FACE_NAMES[face]);
-                furnishing.faces[face] = wall_behaviour(&prefix, file).map_err(face_error)?;
+                furnishing.faces[face] = wall_behaviour(src, &prefix, file)?;
             }
         }
         boxes.push(furnishing);
@@ -453,13 +549,8 @@ fn furnishings(
 
 /// The `[[openings]]` of a room `geometry`, checked (each within its wall, none overlapping
 /// another, supply and exhaust flows balanced); errors name the file, the line and the key.
-fn openings(
-    path: &Path,
-    text: &str,
-    entries: &[Spanned<OpeningFile>],
-    geometry: &Geometry,
-) -> Result<Vec<Opening>, Error> {
-    let at = |offset: usize, message: String| format!("{} line {}: {message}", path.display(), line_of(text, offset));
+fn openings(src: &SceneSource, entries: &[Spanned<OpeningFile>], geometry: &Geometry) -> Result<Vec<Opening>, Error> {
+    let at = |offset: usize, message: String| src.at_offset(offset, message);
     let walls = geometry.walls();
     let mut parsed = Vec::new();
     for (k, entry) in entries.iter().enumerate() {
@@ -525,18 +616,21 @@ fn gravity(g: f64) -> [f64; 3] {
     [0.0, 0.0, -g]
 }
 
-/// A room scene: its study, and the size distribution it runs instead of the study's
-/// diameters, if it gives one.
+/// A room scene: its study, the size distribution it runs instead of the study's diameters,
+/// if it gives one, and where it came from (for the lines of the run's errors).
 pub struct RoomScene {
     pub study: RoomStudy,
     pub distribution: Option<Distribution>,
+    pub source: SceneSource,
 }
 
 /// The room scene of `path` (its study and its size distribution), or the built-in one.
 pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     let mut study = RoomStudy::default();
-    let Some(path) = path else { return Ok(RoomScene { study, distribution: None }) };
-    let (file, text): (RoomFile, String) = read_with_text(path)?;
+    let Some(path) = path else {
+        return Ok(RoomScene { study, distribution: None, source: SceneSource::built_in("the built-in room") });
+    };
+    let (file, src): (RoomFile, SceneSource) = read(path)?;
     let scene = &mut study.scene;
     if let Some(size) = file.room.size {
         scene.geometry = Geometry::Room { size };
@@ -547,7 +641,7 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
         set(&mut core_rms, file.flow.core_rms);
         if let Some(k) = file.flow.core_tke {
             if file.flow.core_rms.is_some() {
-                return Err(format!("{}: give `flow.core_rms` or `flow.core_tke`, not both", path.display()));
+                return Err(src.at(&["flow.core_tke"], "give `flow.core_rms` or `flow.core_tke`, not both"));
             }
             core_rms = (2.0 * k / 3.0).sqrt();
         }
@@ -560,115 +654,123 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
-    apply_run_choices(path, scene, &file.run)?;
+    apply_run_choices(&src, scene, &file.run)?;
     set(&mut study.excursions, file.run.excursions);
     scene.gravity = gravity(file.run.gravity.unwrap_or(STANDARD_GRAVITY));
     if file.run.dt_plus.is_some() || file.run.duration_plus.is_some() {
-        return Err(format!("{}: a room takes `run.dt` and `run.duration` in seconds", path.display()));
+        return Err(
+            src.at(&["run.dt_plus", "run.duration_plus"], "a room takes `run.dt` and `run.duration` in seconds")
+        );
     }
     // A zero duration is a run that only checks its scene.
     if scene.duration > 0.0 && scene.dt > scene.duration {
-        return Err(format!(
-            "{}: `run.dt` = {} s is longer than the run, `run.duration` = {} s",
-            path.display(),
-            scene.dt,
-            scene.duration
+        return Err(src.at(
+            &["run.dt", "run.duration"],
+            format!("`run.dt` = {} s is longer than the run, `run.duration` = {} s", scene.dt, scene.duration),
         ));
     }
-    apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
-    scene.furnishings = furnishings(path, &text, &file.furnishings, scene.geometry.size())?;
-    scene.openings = openings(path, &text, &file.openings, &scene.geometry)?;
+    apply_walls(&src, scene, &file.walls)?;
+    scene.furnishings = furnishings(&src, &file.furnishings, scene.geometry.size())?;
+    scene.openings = openings(&src, &file.openings, &scene.geometry)?;
     openings::validate_clearance(&scene.openings, &scene.furnishings, scene.geometry.size()).map_err(|e| {
         // `furnishings[k]`: the line of that entry.
         let k: usize = e.field.trim_start_matches("furnishings[").trim_end_matches(']').parse().unwrap_or(0);
         let offset = file.furnishings.get(k).map_or(0, |f| f.span().start);
-        format!(
-            "{} line {}: `furnishings[{k}]` is {} m off an opening's wall and {}",
-            path.display(),
-            line_of(&text, offset),
-            e.value,
-            e.requirement.trim_end_matches(" (this is the gap, m)")
+        src.at_offset(
+            offset,
+            format!(
+                "`furnishings[{k}]` is {} m off an opening's wall and {}",
+                e.value,
+                e.requirement.trim_end_matches(" (this is the gap, m)")
+            ),
         )
     })?;
     set(&mut study.transient, file.run.transient);
-    check_transient(path, study.transient)?;
+    check_transient(&src, study.transient)?;
     set(&mut study.diameters, file.particles.diameters.clone());
     set(&mut study.count, file.particles.count);
     set(&mut study.max_count, file.particles.max_count);
-    set_target_error(path, &mut study.target_error, file.particles.target_error)?;
+    set_target_error(&src, &mut study.target_error, file.particles.target_error)?;
     set(&mut study.density, file.particles.density);
-    if let Some(ach) = file.ventilation.air_changes_per_hour {
+    let ventilation = &file.ventilation;
+    // An error at the line of `ventilation.{key}`.
+    let at = |key: &str, message: String| src.at(&[&format!("ventilation.{key}")], message);
+    if let Some(ach) = ventilation.air_changes_per_hour {
         if !(ach.is_finite() && ach >= 0.0) {
-            return Err(format!(
-                "{}: `ventilation.air_changes_per_hour` = {ach} must be finite and not negative",
-                path.display()
+            return Err(at(
+                "air_changes_per_hour",
+                format!("`ventilation.air_changes_per_hour` = {ach} must be finite and not negative"),
             ));
         }
         if ach > 0.0 && !scene.openings.is_empty() {
-            return Err(format!(
-                "{}: `ventilation.air_changes_per_hour` = {ach} must be 0 with `[[openings]]`: their exhaust flow sets it",
-                path.display()
+            return Err(at(
+                "air_changes_per_hour",
+                format!(
+                    "`ventilation.air_changes_per_hour` = {ach} must be 0 with `[[openings]]`: their exhaust flow sets it"
+                ),
             ));
         }
         scene.air_exchange = ach / 3600.0;
     }
-    if let Some(p) = file.ventilation.penetration {
+    if let Some(p) = ventilation.penetration {
         if !(0.0..=1.0).contains(&p) {
-            return Err(format!("{}: `ventilation.penetration` = {p} must be in [0, 1]", path.display()));
+            return Err(at("penetration", format!("`ventilation.penetration` = {p} must be in [0, 1]")));
         }
         study.penetration = p;
     }
-    let ventilation = &file.ventilation;
     if let Some(share) = ventilation.supply_share {
         if !(0.0..=1.0).contains(&share) {
-            return Err(format!("{}: `ventilation.supply_share` = {share} must be in [0, 1]", path.display()));
+            return Err(at("supply_share", format!("`ventilation.supply_share` = {share} must be in [0, 1]")));
         }
         study.filtration.supply_share = share;
     }
     if let Some(filter) = &ventilation.supply_filter {
-        study.filtration.supply_filter = filter_efficiency(path, "supply_filter", filter)?;
+        study.filtration.supply_filter = filter_efficiency(&src, "supply_filter", filter)?;
     }
     if let Some(rate) = ventilation.recirculation_per_hour {
         if !(rate.is_finite() && rate >= 0.0) {
-            return Err(format!(
-                "{}: `ventilation.recirculation_per_hour` = {rate} must be finite and not negative",
-                path.display()
+            return Err(at(
+                "recirculation_per_hour",
+                format!("`ventilation.recirculation_per_hour` = {rate} must be finite and not negative"),
             ));
         }
         if rate > 0.0 && !scene.openings.is_empty() {
-            return Err(format!(
-                "{}: `ventilation.recirculation_per_hour` = {rate} must be 0 with `[[openings]]` (not modelled beside them)",
-                path.display()
+            return Err(at(
+                "recirculation_per_hour",
+                format!(
+                    "`ventilation.recirculation_per_hour` = {rate} must be 0 with `[[openings]]` (not modelled beside them)"
+                ),
             ));
         }
         study.filtration.recirculation = rate / 3600.0;
     }
     if let Some(filter) = &ventilation.recirculation_filter {
-        study.filtration.recirculation_filter = filter_efficiency(path, "recirculation_filter", filter)?;
+        study.filtration.recirculation_filter = filter_efficiency(&src, "recirculation_filter", filter)?;
     }
-    check_count(path, "particles.count", study.count)?;
+    check_count(&src, "particles.count", &["particles.count"], study.count)?;
     if study.target_error.is_some() {
-        check_count(path, "particles.max_count", study.max_count)?;
+        check_count(&src, "particles.max_count", &["particles.max_count"], study.max_count)?;
     }
     if study.diameters.is_empty() {
-        return Err(format!("{}: `particles.diameters` is empty", path.display()));
+        return Err(src.at(&["particles.diameters"], "`particles.diameters` is empty"));
     }
-    let distribution = distribution(path, &text, &file.particles, study.density, &study.scene.air)?;
-    Ok(RoomScene { study, distribution })
+    let distribution = distribution(path, &src, &file.particles, study.density, &study.scene.air)?;
+    Ok(RoomScene { study, distribution, source: src })
 }
 
-/// The channel study of `path`, or the built-in one.
-pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
+/// The channel study of `path`, or the built-in one, and where it came from (for the lines
+/// of the run's errors).
+pub fn channel(path: Option<&Path>) -> Result<(ChannelStudy, SceneSource), Error> {
     let mut study = ChannelStudy::default();
-    let Some(path) = path else { return Ok(study) };
-    let file: ChannelFile = read(path)?;
+    let Some(path) = path else { return Ok((study, SceneSource::built_in("the built-in channel"))) };
+    let (file, src): (ChannelFile, SceneSource) = read(path)?;
     let scene = &mut study.scene;
     apply_air(scene, &file.air);
     let u_star = file.channel.friction_velocity.unwrap_or(scene.flow.friction_velocity().unwrap_or(0.3));
     let re_tau = file.channel.re_tau.unwrap_or(150.0);
     for (key, v) in [("channel.friction_velocity", u_star), ("channel.re_tau", re_tau)] {
         if !(v.is_finite() && v > 0.0) {
-            return Err(format!("{}: `{key}` = {v} must be finite and positive", path.display()));
+            return Err(src.at(&[key], format!("`{key}` = {v} must be finite and positive")));
         }
     }
     let unit = scene.air.kinematic_viscosity() / u_star;
@@ -679,61 +781,65 @@ pub fn channel(path: Option<&Path>) -> Result<ChannelStudy, Error> {
     scene.dt = dt_plus * time;
     scene.duration = duration_plus * time;
     if file.run.dt.is_some() || file.run.duration.is_some() {
-        return Err(format!("{}: a channel takes `run.dt_plus` and `run.duration_plus` in wall units", path.display()));
+        return Err(
+            src.at(&["run.dt", "run.duration"], "a channel takes `run.dt_plus` and `run.duration_plus` in wall units")
+        );
     }
     if duration_plus > 0.0 && dt_plus > duration_plus {
-        return Err(format!(
-            "{}: `run.dt_plus` = {dt_plus} is longer than the run, `run.duration_plus` = {duration_plus}",
-            path.display()
+        return Err(src.at(
+            &["run.dt_plus", "run.duration_plus"],
+            format!("`run.dt_plus` = {dt_plus} is longer than the run, `run.duration_plus` = {duration_plus}"),
         ));
     }
     set(&mut scene.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
-    apply_run_choices(path, scene, &file.run)?;
+    apply_run_choices(&src, scene, &file.run)?;
     if file.run.excursions == Some(false) {
         study.excursions_below = 0.0;
     }
     scene.gravity = gravity(file.run.gravity.unwrap_or(0.0));
-    apply_walls(scene, &file.walls).map_err(|e| format!("{}: {e}", path.display()))?;
+    apply_walls(&src, scene, &file.walls)?;
     set(&mut study.transient, file.run.transient);
-    check_transient(path, study.transient)?;
+    check_transient(&src, study.transient)?;
     set(&mut study.tau_plus, file.particles.tau_plus);
     set(&mut study.count, file.particles.count);
     set(&mut study.excursion_count, file.particles.excursion_count);
-    check_count(path, "particles.count", study.count)?;
-    check_count(path, "particles.excursion_count", study.excursion_count)?;
-    set_target_error(path, &mut study.target_error, file.particles.target_error)?;
+    check_count(&src, "particles.count", &["particles.count"], study.count)?;
+    check_count(&src, "particles.excursion_count", &["particles.excursion_count"], study.excursion_count)?;
+    set_target_error(&src, &mut study.target_error, file.particles.target_error)?;
     if let Some(factor) = file.particles.max_factor {
         if !(factor.is_finite() && factor >= 1.0) {
-            return Err(format!("{}: `particles.max_factor` = {factor} must be finite and at least 1", path.display()));
+            let key = "particles.max_factor";
+            return Err(src.at(&[key], format!("`{key}` = {factor} must be finite and at least 1")));
         }
         study.max_factor = factor;
     }
     let most = |count: usize| (count as f64 * study.max_factor).min(usize::MAX as f64) as usize;
-    check_count(path, "particles.count times particles.max_factor", most(study.count))?;
-    check_count(path, "particles.excursion_count times particles.max_factor", most(study.excursion_count))?;
+    // The counts alone fit (above): the factor makes too many.
+    for (count, n) in [("particles.count", study.count), ("particles.excursion_count", study.excursion_count)] {
+        check_count(&src, &format!("{count} times particles.max_factor"), &["particles.max_factor", count], most(n))?;
+    }
     set(&mut study.density, file.particles.density);
-    Ok(study)
+    Ok((study, src))
 }
 
 /// `particles.target_error`, if the file sets it: 0 turns the target off.
-fn set_target_error(path: &Path, target_error: &mut Option<f64>, value: Option<f64>) -> Result<(), Error> {
+fn set_target_error(src: &SceneSource, target_error: &mut Option<f64>, value: Option<f64>) -> Result<(), Error> {
     if let Some(target) = value {
         if !(target.is_finite() && target >= 0.0) {
-            return Err(format!(
-                "{}: `particles.target_error` = {target} must be finite and not negative",
-                path.display()
-            ));
+            let key = "particles.target_error";
+            return Err(src.at(&[key], format!("`{key}` = {target} must be finite and not negative")));
         }
         *target_error = (target > 0.0).then_some(target);
     }
     Ok(())
 }
 
-/// A particle count whose particles would not fit in memory is one line, not an abort.
-fn check_count(path: &Path, key: &str, count: usize) -> Result<(), Error> {
-    check_memory(&format!("{}: `{key}` = {count}", path.display()), count as u64, PARTICLE_BYTES)
+/// A particle count whose particles would not fit in memory is one line, not an abort: the
+/// count's `key`, at the line of the first of `lines` the file gives.
+fn check_count(src: &SceneSource, key: &str, lines: &[&str], count: usize) -> Result<(), Error> {
+    check_memory(&src.at(lines, format!("`{key}` = {count}")), count as u64, PARTICLE_BYTES)
 }
 
 /// What a particle of a run keeps in memory, generously: its record and tally (about 900
@@ -741,11 +847,11 @@ fn check_count(path: &Path, key: &str, count: usize) -> Result<(), Error> {
 /// study's results.
 const PARTICLE_BYTES: u64 = 1536;
 
-fn check_transient(path: &Path, transient: f64) -> Result<(), Error> {
+fn check_transient(src: &SceneSource, transient: f64) -> Result<(), Error> {
     if (0.0..1.0).contains(&transient) {
         Ok(())
     } else {
-        Err(format!("{}: `run.transient` = {transient} must be in [0, 1)", path.display()))
+        Err(src.at(&["run.transient"], format!("`run.transient` = {transient} must be in [0, 1)")))
     }
 }
 
@@ -762,12 +868,12 @@ const WARN_BINNED_SHARE: f64 = 0.99;
 /// line and the key.
 fn distribution(
     path: &Path,
-    text: &str,
+    src: &SceneSource,
     particles: &RoomParticles,
     density: f64,
     air: &Air,
 ) -> Result<Option<Distribution>, Error> {
-    let at = |offset: usize, message: String| format!("{} line {}: {message}", path.display(), line_of(text, offset));
+    let at = |offset: usize, message: String| src.at_offset(offset, message);
     if let (Some(modes), Some(bins)) = (&particles.modes, &particles.size_bins) {
         let later = modes.span().start.max(bins.span().start);
         return Err(at(later, "give `particles.modes` or `particles.size_bins`, not both".into()));
@@ -994,11 +1100,156 @@ fn size_classes(path: &Path, density: f64) -> Result<Vec<SizeClass>, Error> {
 
 #[cfg(test)]
 mod tests {
-    use depo::tracker::{ParticleTally, Record};
+    use std::path::PathBuf;
+
+    use depo::tracker::{ParticleTally, Record, SceneError};
+
+    use super::{channel, line_of_key, room_scene};
 
     #[test]
     fn a_particle_s_memory_is_counted_generously() {
         let kept = std::mem::size_of::<ParticleTally>() + std::mem::size_of::<Record>();
         assert!(kept as u64 * 3 / 2 <= super::PARTICLE_BYTES, "{kept} bytes a particle");
+    }
+
+    /// A small room's first lines, so that a bad key below them is on line 9 or later and the
+    /// runs that reach their checks are quick.
+    const ROOM: &str = "# A test room.\n\
+                        [room]\n\
+                        size = [2.0, 2.0, 2.0]\n\
+                        [particles]\n\
+                        diameters = [1e-6]\n\
+                        count = 10\n\
+                        target_error = 0.0\n";
+
+    /// The scene file `name` holding `text`, in the temporary directory.
+    fn scene_file(name: &str, text: &str) -> PathBuf {
+        let path = std::env::temp_dir().join(format!("depo-scene-file-{}-{name}.toml", std::process::id()));
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+
+    /// The error of a scene file `text` as the CLI gives it, reading it or else running it
+    /// (its scene is validated as the run starts), without the file's path it starts with.
+    fn error(name: &str, text: &str, kind: &str) -> String {
+        let path = scene_file(name, text);
+        let result = if kind == "room" {
+            room_scene(Some(&path)).and_then(|s| s.study.run(|_| {}).map(drop).map_err(|e| s.source.scene_error(&e)))
+        } else {
+            channel(Some(&path)).and_then(|(study, src)| study.run(|_| {}).map(drop).map_err(|e| src.scene_error(&e)))
+        };
+        std::fs::remove_file(&path).unwrap();
+        let message = result.expect_err("a bad scene");
+        let name = path.display().to_string();
+        message.strip_prefix(&name).unwrap_or_else(|| panic!("{message} names {name}")).to_string()
+    }
+
+    fn room_error(name: &str, lines: &str) -> String {
+        error(name, &format!("{ROOM}{lines}"), "room")
+    }
+
+    #[test]
+    fn value_errors_name_the_line_of_their_key() {
+        assert_eq!(
+            room_error("air", "[air]\npressure = 101325.0\ntemperature = -5.0\n"),
+            " line 10: `air.temperature` = -5 must be finite and positive"
+        );
+        assert_eq!(
+            room_error("dt", "[run]\nduration = 10.0\n\ndt = 0.0\n"),
+            " line 11: `dt` = 0 must be finite and positive"
+        );
+        assert_eq!(
+            room_error("scheme", "[run]\nduration = 10.0\nscheme = \"euler\"\n"),
+            " line 10: `run.scheme` = \"euler\": expected \"exponential\" or \"midpoint\""
+        );
+        assert_eq!(
+            room_error("transient", "[run]\nduration = 10.0\ntransient = 1.5\n"),
+            " line 10: `run.transient` = 1.5 must be in [0, 1)"
+        );
+        assert_eq!(
+            room_error("law", "[walls]\nceiling = { behaviour = \"sink\" }\nfloor = { behaviour = \"law\" }\n"),
+            " line 10: `walls.floor.preset` (or the constants `k`, `kappa`, `vc`) is needed for a wall law"
+        );
+        assert_eq!(
+            room_error("behaviour", "[walls.x1]\nbehaviour = \"bounce\"\n"),
+            " line 9: `walls.x1.behaviour` = \"bounce\": expected \"sink\", \"reflect\" or \"law\""
+        );
+        assert_eq!(
+            room_error("penetration", "[ventilation]\nair_changes_per_hour = 0.5\npenetration = 2.0\n"),
+            " line 10: `ventilation.penetration` = 2 must be in [0, 1]"
+        );
+        assert_eq!(
+            room_error("friction", "[flow]\ncore_rms = 0.01\n\n\nfriction_velocity = -1.0\n"),
+            " line 12: `flow.friction_velocity` = -1 must be finite and positive"
+        );
+        // A furnishing's face: the line of its key, in the second entry.
+        let furnished = "[[furnishings]]\nlow = [0.5, 0.5, 0.5]\nhigh = [0.7, 0.7, 0.7]\n\
+                         [[furnishings]]\nlow = [1.0, 1.0, 1.0]\nhigh = [1.5, 1.5, 1.5]\n\
+                         top = { preset = \"nope\" }\n";
+        let message = room_error("face", furnished);
+        assert!(message.starts_with(" line 14: `furnishings[1].top.preset`: "), "{message}");
+    }
+
+    #[test]
+    fn channel_errors_name_the_line_of_their_key() {
+        let head = "[channel]\nre_tau = 150.0\n[particles]\ntau_plus = [1.0]\ncount = 10\n";
+        let message = error("lower", &format!("{head}[walls]\nlower = {{ preset = \"nope\" }}\n"), "channel");
+        assert!(message.starts_with(" line 7: `walls.lower.preset`: "), "{message}");
+        assert_eq!(
+            error("seconds", &format!("{head}[run]\nduration_plus = 10.0\ndt = 0.1\n"), "channel"),
+            " line 8: a channel takes `run.dt_plus` and `run.duration_plus` in wall units"
+        );
+        let message = error("dt_plus", &format!("{head}[run]\nduration_plus = 10.0\ndt_plus = -0.1\n"), "channel");
+        assert!(
+            message.starts_with(" line 8: `dt` = -") && message.ends_with(" must be finite and positive"),
+            "{message}"
+        );
+    }
+
+    /// A key the file leaves out is the default's: no line (none in the file is the key's).
+    #[test]
+    fn a_default_value_s_error_has_no_line() {
+        let path = scene_file("default", &format!("{ROOM}[run]\nduration = 10.0\n"));
+        let scene = room_scene(Some(&path)).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let e = SceneError { field: "flow.core_time".into(), value: 0.0, requirement: "must be finite and positive" };
+        assert_eq!(
+            scene.source.scene_error(&e),
+            format!("{}: `flow.core_time` = 0 must be finite and positive", path.display())
+        );
+        let e = SceneError { field: "duration".into(), ..e };
+        assert!(scene.source.scene_error(&e).contains(" line 9: `duration` = 0"), "{e}");
+        let built_in = room_scene(None).unwrap().source;
+        assert_eq!(built_in.scene_error(&e), "the built-in room: `duration` = 0 must be finite and positive");
+    }
+
+    /// Dotted keys in tables, inline tables, headers and arrays of tables.
+    #[test]
+    fn keys_are_found_by_their_spans() {
+        let text = "title = 1\n\
+                    [walls]\n\
+                    floor = { preset = \"a\",\n  mu = 0.3 }\n\
+                    [walls.x0]\n\
+                    k = 1.0\n\
+                    [[furnishings]]\n\
+                    low = [1, 2, 3]\n\
+                    [[furnishings]]\n\
+                    top.preset = \"b\"\n";
+        let root = toml::de::DeTable::parse(text).unwrap();
+        let line = |key: &str| line_of_key(text, root.get_ref(), key);
+        assert_eq!(line("title"), Some(1));
+        assert_eq!(line("walls"), Some(2));
+        assert_eq!(line("walls.floor"), Some(3));
+        assert_eq!(line("walls.floor.mu"), Some(4));
+        assert_eq!(line("walls.x0"), Some(5));
+        assert_eq!(line("walls.x0.k"), Some(6));
+        assert_eq!(line("furnishings[0]"), Some(7));
+        assert_eq!(line("furnishings[0].low"), Some(8));
+        assert_eq!(line("furnishings[1].top.preset"), Some(10));
+        for absent in
+            ["run.dt", "walls.x1", "walls.floor.k", "furnishings[2]", "title.x", "walls[0]", "furnishings.low"]
+        {
+            assert_eq!(line(absent), None, "{absent}");
+        }
     }
 }
