@@ -31,6 +31,48 @@ pub struct FitArgs {
     /// Also draw the data and the fitted e against |vn| into this SVG file.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// The surface the printed scene entry is for: a `[walls]` key of a room (all, floor,
+    /// ceiling, x0, x1, y0, y1) or a channel (lower, upper), or a face of a `[[furnishings]]`
+    /// entry (all, bottom, top, x0, x1, y0, y1).
+    #[arg(long, default_value = "floor", value_parser = SURFACES)]
+    surface: String,
+}
+
+/// The surface keys a scene file takes a wall law under: the room's and the channel's
+/// `[walls]` keys and the faces of a `[[furnishings]]` entry (`src/cli/scene_file.rs`).
+const SURFACES: [&str; 11] = ["all", "floor", "ceiling", "x0", "x1", "y0", "y1", "lower", "upper", "bottom", "top"];
+
+/// Where in a scene file the entry for `surface` goes.
+fn entry_home(surface: &str) -> &'static str {
+    match surface {
+        "floor" | "ceiling" => "under [walls] of a room scene",
+        "lower" | "upper" => "under [walls] of a channel scene",
+        "bottom" | "top" => "into a [[furnishings]] entry",
+        "all" => "under [walls] of a room or channel scene, or into a [[furnishings]] entry for all its faces",
+        _ => "under [walls] of a room scene, or into a [[furnishings]] entry for that face",
+    }
+}
+
+/// A number for a TOML file that reads back as the same `f64`: `{:?}` prints the shortest
+/// digits that round-trip, as `{}` does, but always with a decimal point or an exponent
+/// (`1.0`, `1e-7`), so that TOML reads a float, not an integer, and very small or large
+/// values stay short.
+fn toml_float(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// The `[walls]` entry (or furnishing face) that gives `surface` the fitted law, with the keys
+/// the scene reader takes for a law's own constants. It leaves out `mu`: the fit has no
+/// friction coefficient (normal impacts do not measure one).
+fn scene_entry(surface: &str, k: f64, kappa: f64, vc: f64, p: f64, q: f64) -> String {
+    format!(
+        "{surface} = {{ behaviour = \"law\", k = {}, kappa = {}, vc = {}, p = {}, q = {} }}",
+        toml_float(k),
+        toml_float(kappa),
+        toml_float(vc),
+        toml_float(p),
+        toml_float(q)
+    )
 }
 
 /// The fit as printed; the JSON keys are stable.
@@ -52,6 +94,8 @@ struct Output {
     q_se: f64,
     vc_extrapolated: bool,
     samples: usize,
+    /// The fitted law as a scene file's entry for `--surface`, to paste into a scene.
+    scene_entry: String,
 }
 
 /// Reads the samples; an unreadable file or a bad row is one line naming the file and line.
@@ -116,6 +160,7 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
         q_se: se.q,
         vc_extrapolated: report.vc_extrapolated,
         samples: report.samples,
+        scene_entry: scene_entry(&args.surface, params.k1, params.kappa1, params.vc, params.p, params.q),
     };
     match args.format {
         Format::Json => out!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?),
@@ -138,6 +183,9 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
                 rc(&report),
                 rc(&report).powi(2)
             );
+            out!("scene: {}", out.scene_entry);
+            out!("       # paste {}", entry_home(&args.surface));
+            out!("       # friction is not fitted (normal impacts do not measure it): add mu = ... by hand");
         }
     }
     if report.vc_extrapolated {
