@@ -407,6 +407,14 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     let on_walls = ten["deposited"]["walls"].as_u64().unwrap();
     let side: u64 = ["x0", "x1", "y0", "y1"].iter().map(|w| mapped(w)).sum();
     assert_eq!(side, on_walls, "the four side maps hold every wall deposit");
+    // Each wall apart: its deposits as its map has them, its events adding up to the walls'.
+    let each = ten["each_wall"].as_array().unwrap();
+    assert_eq!(each.iter().map(|w| w["wall"].as_str().unwrap()).collect::<Vec<_>>(), ["x0", "x1", "y0", "y1"]);
+    for w in each {
+        assert_eq!(w["deposited"].as_u64().unwrap(), mapped(w["wall"].as_str().unwrap()), "{w}");
+    }
+    let events: u64 = each.iter().map(|w| w["velocity"]["events"].as_u64().unwrap()).sum();
+    assert_eq!(events, ten["walls"]["events"].as_u64().unwrap());
     assert_eq!(mapped("ceiling"), ten["deposited"]["ceiling"].as_u64().unwrap());
     for figure in ["room-deposition.svg", "room-beta.svg"] {
         assert!(std::fs::read_to_string(plots.join(figure)).unwrap().contains("<svg"), "{figure}");
@@ -429,6 +437,12 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     for key in ["floor", "ceiling", "walls"] {
         let column = header.iter().position(|h| *h == format!("{key}_deposits")).expect("deposits column");
         assert_eq!(last[column].parse::<u64>().unwrap(), ten[key]["events"].as_u64().unwrap(), "{key}");
+        let column = header.iter().position(|h| *h == format!("{key}_kg")).expect("mass column");
+        assert_eq!(last[column].parse::<f64>().unwrap(), ten["deposited"][format!("{key}_kg")].as_f64().unwrap());
+    }
+    for (k, wall) in ["x0", "x1", "y0", "y1"].iter().enumerate() {
+        let column = header.iter().position(|h| *h == format!("{wall}_deposits")).expect("a wall's deposits");
+        assert_eq!(last[column].parse::<u64>().unwrap(), each[k]["velocity"]["events"].as_u64().unwrap(), "{wall}");
     }
     let unresolved: Vec<&str> = ten["unresolved"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
     assert!(unresolved.contains(&"ceiling"), "no deposit is unresolved: {unresolved:?}");
@@ -437,6 +451,22 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     assert_eq!(line.matches("]*").count(), unresolved.len(), "{line}");
     assert!(line.contains("[0]*"), "{line}");
     assert!(table.contains("* unresolved: no deposit event, or, where Lai & Nazaroff give at least 1e-7 m/s, a relative standard error or a share given up above 5 %"), "{table}");
+    // The walls alike: no table of each wall; one a mirror: each wall apart, that one bare
+    // and the others not (0.03 um particles reach the walls by diffusion).
+    assert!(!table.contains("Each vertical wall"), "{table}");
+    let mirrored = dir.join("mirrored.toml");
+    std::fs::write(
+        &mirrored,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [0.03e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [run]\ndt = 0.05\nduration = 300.0\n[walls]\nx0 = { behaviour = \"reflect\" }\n",
+    )
+    .unwrap();
+    let apart = ok_text(&["room", mirrored.to_str().unwrap(), "--no-plot"]);
+    let at = apart.find("Each vertical wall").unwrap_or_else(|| panic!("{apart}"));
+    let line = apart[at..].lines().find(|l| l.trim_start().starts_with("0.030")).unwrap();
+    let cells: Vec<&str> = line.split(']').collect();
+    assert!(cells[0].contains("< ") && cells[0].ends_with("[0"), "x0 reflects: no deposit: {line}");
+    assert!(cells[1..4].iter().all(|c| c.contains("+-") && !c.ends_with("[0")), "the sinks collect: {line}");
     // With 300 particles some figure the model asks to resolve is above 5 %: the table says
     // how many particles would bring each size's within (its largest need, from the JSON's
     // errors here, with the study's margin of 1.15, rounded up to two figures).
@@ -800,6 +830,22 @@ fn room_reports_furnishings() {
     let mapped: u64 =
         map.lines().filter(|l| !l.starts_with('#')).flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum();
     assert_eq!(mapped, rows[0]["faces"][1]["deposited"].as_u64().unwrap());
+    // The maps drawn: the room's six surfaces and each box's top, each captioned with its
+    // deposits in all, as the JSON counts them.
+    let figure = std::fs::read_to_string(plots.join("room-map-10um.svg")).unwrap();
+    let caption = |name: &str, n: u64| format!("{name} ({n} deposit{})", if n == 1 { "" } else { "s" });
+    let on_top = rows[0]["faces"][1]["deposited"].as_u64().unwrap();
+    assert!(figure.contains(&caption("table.top", on_top)), "{figure}");
+    assert!(figure.contains(&caption("floor", size["deposited"]["floor"].as_u64().unwrap())), "{figure}");
+    for wall in ["ceiling", "x0", "x1", "y0", "y1", "shelf.top"] {
+        assert!(figure.contains(&format!("\n{wall} (")), "{wall} in {figure}");
+    }
+    assert!(!figure.contains("table.bottom"), "only the tops are drawn");
+    // The furnishings beside the room's surfaces, and the ventilated room's C_in/C_out.
+    let deposition = std::fs::read_to_string(plots.join("room-deposition.svg")).unwrap();
+    assert!(deposition.contains("table (all faces) (depo, +- 1 s.e.)"), "{deposition}");
+    let ratio = std::fs::read_to_string(plots.join("room-indoor-outdoor.svg")).unwrap();
+    assert!(ratio.contains("C_in / C_out (depo, +- 1 s.e.)"), "{ratio}");
     assert!(table.contains("Furnishings: 2 boxes") && table.contains("surface-to-volume ratio"), "{table}");
     assert!(table.lines().any(|l| l.contains("shelf")), "{table}");
 }
@@ -1136,10 +1182,16 @@ fn room_reports_a_size_distribution_mass_balance() {
     let first = (sizes[0]["diameter_um"].as_f64().unwrap() * 1e4).round() / 1e4;
     assert!(decay.contains(&format!("{first} um, 1500 kg/m^3 (depo")), "{first}");
     assert!(plots.join(format!("room-map-floor-{first}um-1500kgm3.csv")).exists(), "{first}");
-    let maps = std::fs::read_dir(&plots)
-        .unwrap()
-        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().starts_with("room-map-"));
-    assert_eq!(maps.count(), 8 * 6, "a map per bin and wall");
+    let named = |end: &str| {
+        std::fs::read_dir(&plots)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with("room-map-") && n.ends_with(end))
+            .count()
+    };
+    assert_eq!(named(".csv"), 8 * 6, "a map per bin and wall");
+    assert_eq!(named(".svg"), 8, "a figure of the maps per bin");
+    assert!(plots.join(format!("room-map-{first}um-1500kgm3.svg")).exists(), "{first}");
     // The CSV: one row per class, the same numbers.
     let csv =
         String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]).stdout).unwrap();

@@ -280,6 +280,76 @@ fn chart(
     Ok(())
 }
 
+/// One panel of [`maps`]: a named grid of counts, row `i` the `i`-th band from the bottom along
+/// the vertical axis `axes[0]`, column `j` the `j`-th along the horizontal axis `axes[1]`,
+/// each axis `(name, low, high)` in m.
+pub struct MapPanel {
+    pub name: String,
+    pub cells: Vec<Vec<u32>>,
+    pub axes: [(&'static str, f64, f64); 2],
+}
+
+/// Draws `panels` side by side, three to a row, each cell shaded by its count on one linear
+/// scale for all (white for none, darkest for the largest count), into the SVG file `path`.
+/// Each panel's caption names the surface and its deposits in all.
+pub fn maps(path: &Path, title: &str, panels: &[MapPanel]) -> Result<(), Error> {
+    const PANEL: (u32, u32) = (300, 260);
+    let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
+    let columns = panels.len().clamp(1, 3) as u32;
+    let rows = panels.len().div_ceil(3).max(1) as u32;
+    let most = panels.iter().flat_map(|p| p.cells.iter().flatten()).copied().max().unwrap_or(0).max(1);
+    let root = SVGBackend::new(path, (columns * PANEL.0, 40 + rows * PANEL.1 + 30)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let (head, rest) = root.split_vertically(40);
+    let centred = TextStyle::from(("sans-serif", 20).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
+    head.draw(&Text::new(title, ((columns * PANEL.0 / 2) as i32, 20), centred)).map_err(|e| fail(&e))?;
+    let (grid, foot) = rest.split_vertically(rows * PANEL.1);
+    let note = TextStyle::from(("sans-serif", 14).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    let scale = format!("deposits per cell: white 0, darkest {most} (one linear scale for every surface)");
+    foot.draw(&Text::new(scale.as_str(), (15, 15), note)).map_err(|e| fail(&e))?;
+    let areas = grid.split_evenly((rows as usize, columns as usize));
+    for (panel, area) in panels.iter().zip(&areas) {
+        let total: u64 = panel.cells.iter().flatten().map(|&c| u64::from(c)).sum();
+        let [(down, d0, d1), (across, a0, a1)] = panel.axes;
+        let mut chart = ChartBuilder::on(area)
+            .caption(format!("{} ({total} deposit{})", panel.name, plural(total as usize)), ("sans-serif", 15))
+            .margin(8)
+            .x_label_area_size(30)
+            .y_label_area_size(40)
+            .build_cartesian_2d(a0..a1, d0..d1)
+            .map_err(|e| fail(&e))?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(format!("{across} (m)"))
+            .y_desc(format!("{down} (m)"))
+            .x_labels(4)
+            .y_labels(4)
+            .x_label_formatter(&|v| tick(*v))
+            .y_label_formatter(&|v| tick(*v))
+            .draw()
+            .map_err(|e| fail(&e))?;
+        let n = panel.cells.len().max(1);
+        let m = panel.cells.first().map_or(1, Vec::len).max(1);
+        let (dd, da) = ((d1 - d0) / n as f64, (a1 - a0) / m as f64);
+        let shade = |c: u32| {
+            let t = f64::from(c) / f64::from(most);
+            let mix = |full: u8| (255.0 - t * (255.0 - f64::from(full))).round() as u8;
+            RGBColor(mix(0x08), mix(0x30), mix(0x6b))
+        };
+        chart
+            .draw_series(panel.cells.iter().enumerate().flat_map(|(i, row)| {
+                row.iter().enumerate().filter(|(_, &c)| c > 0).map(move |(j, &c)| {
+                    let (y, x) = (d0 + i as f64 * dd, a0 + j as f64 * da);
+                    Rectangle::new([(x, y), (x + da, y + dd)], shade(c).filled())
+                })
+            }))
+            .map_err(|e| fail(&e))?;
+    }
+    root.present().map_err(|e| fail(&e))?;
+    Ok(())
+}
+
 /// A series' symbol in the legend, 30 pixels wide from `(x, y)`.
 fn legend_symbol<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,

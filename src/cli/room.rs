@@ -185,6 +185,9 @@ struct Row {
     floor: Measured,
     ceiling: Measured,
     walls: Measured,
+    /// Each vertical wall (`x0`, `x1`, `y0`, `y1`): its deposition velocity and what it
+    /// collected; `walls` is the four together.
+    each_wall: Vec<WallRow>,
     beta_per_hour: Measured,
     /// With ventilation: the steady indoor/outdoor ratio `P a / (a + beta)` (with filters,
     /// `(P (1 - s) a + (1 - eta_s) s a) / (a + eta_r a_r + beta)`).
@@ -244,6 +247,18 @@ struct FurnishingRow {
     /// What it collected over the whole run, as a share of the release.
     deposited: Share,
 }
+
+/// One vertical wall of the room.
+#[derive(Serialize)]
+struct WallRow {
+    wall: &'static str,
+    velocity: Measured,
+    deposited: usize,
+    deposited_kg: f64,
+}
+
+/// The vertical walls' names, in id order.
+const WALL_NAMES: [&str; 4] = ["x0", "x1", "y0", "y1"];
 
 /// One face of a furnishing.
 #[derive(Serialize)]
@@ -398,6 +413,14 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
         floor,
         ceiling,
         walls,
+        each_wall: (0..4)
+            .map(|k| WallRow {
+                wall: WALL_NAMES[k],
+                velocity: p.each_wall[k].into(),
+                deposited: p.wall_deposited[k].0,
+                deposited_kg: p.wall_deposited[k].1,
+            })
+            .collect(),
         beta_per_hour: per_hour(p.beta),
         indoor_outdoor: p.indoor_outdoor.map(Measured::from),
         filter_removal_per_hour: (p.filter_removal > 0.0).then_some(p.filter_removal * 3600.0),
@@ -557,6 +580,18 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "walls_error",
                 "walls_deposits",
                 "walls_lai_nazaroff",
+                "x0",
+                "x0_error",
+                "x0_deposits",
+                "x1",
+                "x1_error",
+                "x1_deposits",
+                "y0",
+                "y0_error",
+                "y0_deposits",
+                "y1",
+                "y1_error",
+                "y1_deposits",
                 "beta_per_hour",
                 "beta_error",
                 "beta_lai_nazaroff",
@@ -573,6 +608,11 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 "walls_share",
                 "exhausted_share",
                 "airborne_share",
+                "floor_kg",
+                "ceiling_kg",
+                "walls_kg",
+                "exhausted_kg",
+                "airborne_kg",
             ]);
             // A furnished room adds, per furnishing, its deposition velocity onto all its faces,
             // onto its top, and its share of the release; and the surface-to-volume ratio.
@@ -580,7 +620,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             let furnishing_columns: Vec<String> = names
                 .iter()
                 .flat_map(|n| {
-                    ["vd", "vd_error", "deposits", "top_vd", "top_vd_error", "share"].map(|c| format!("{n}_{c}"))
+                    ["vd", "vd_error", "deposits", "top_vd", "top_vd_error", "share", "kg"].map(|c| format!("{n}_{c}"))
                 })
                 .collect();
             header.extend(furnishing_columns.iter().map(String::as_str));
@@ -607,10 +647,11 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                         x(r.walls.error),
                         n(&r.walls),
                         x(r.lai_nazaroff.walls),
-                        x(r.beta_per_hour.value),
-                        x(r.beta_per_hour.error),
-                        x(r.lai_nazaroff.beta_per_hour),
                     ];
+                    for w in &r.each_wall {
+                        row.extend([x(w.velocity.value), x(w.velocity.error), n(&w.velocity)]);
+                    }
+                    row.extend([x(r.beta_per_hour.value), x(r.beta_per_hour.error), x(r.lai_nazaroff.beta_per_hour)]);
                     if ventilated {
                         let io = r.indoor_outdoor.as_ref().map_or([f64::NAN; 2], |m| [m.value, m.error]);
                         row.extend([x(io[0]), x(io[1])]);
@@ -623,6 +664,10 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                         [&release.floor, &release.ceiling, &release.walls, &release.exhausted, &release.airborne]
                             .map(|s| x(s.share)),
                     );
+                    row.extend(
+                        [&release.floor, &release.ceiling, &release.walls, &release.exhausted, &release.airborne]
+                            .map(|s| x(s.kg)),
+                    );
                     for f in &r.furnishings {
                         row.extend([
                             x(f.all.value),
@@ -631,6 +676,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                             x(f.top.value),
                             x(f.top.error),
                             x(f.deposited.share),
+                            x(f.deposited.kg),
                         ]);
                     }
                     if let Some(share) = &release.furnishings {
@@ -730,6 +776,11 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                         .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
                 );
             }
+            // The four walls apart where they can differ: in material, or in the openings' flow.
+            let walls = &study.scene.walls[2..6];
+            if walls.iter().any(|w| *w != walls[0]) || !study.scene.openings.is_empty() {
+                walls_table(&rows);
+            }
             if furnished {
                 furnishings_table(&rows, &study);
             }
@@ -807,6 +858,16 @@ fn density_label(rows: &[Row], density: f64, sep: &str, unit: &str) -> String {
 /// The furnishings' table under the per-size one: per size and furnishing, the deposition
 /// velocity (m/s) onto all its faces, its top, its bottom and its sides, and its share of the
 /// release.
+/// Each vertical wall's deposition velocity, where the walls differ.
+fn walls_table(rows: &[Row]) {
+    out!("Each vertical wall (m/s; x0 at x = 0, x1 opposite it, y0 at y = 0, y1 opposite it):");
+    out!("{:>8}  {:>27}  {:>27}  {:>27}  {:>27}", "d (um)", "x0", "x1", "y0", "y1");
+    for r in rows {
+        let cells: Vec<String> = r.each_wall.iter().map(|w| w.velocity.cell()).collect();
+        out!("{:>8.3}  {:>27}  {:>27}  {:>27}  {:>27}", r.diameter_um, cells[0], cells[1], cells[2], cells[3]);
+    }
+}
+
 fn furnishings_table(rows: &[Row], study: &RoomStudy) {
     let scene = &study.scene;
     out!(
@@ -1005,6 +1066,12 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
         deposition_series.extend(measured("floor", &|r| &r.floor, c));
         deposition_series.extend(measured("ceiling", &|r| &r.ceiling, c + 1));
         deposition_series.extend(measured("walls", &|r| &r.walls, c + 2));
+        // Each furnishing's faces together, beside the room's surfaces.
+        let boxes = own.first().map_or(0, |r| r.furnishings.len());
+        for j in 0..boxes {
+            let name = format!("{} (all faces)", own[0].furnishings[j].name);
+            deposition_series.extend(measured(&name, &|r| &r.furnishings[j].all, c + 3 + j));
+        }
         deposition_series.push(curve("floor", &|m| m.floor, c));
         deposition_series.push(curve("ceiling", &|m| m.ceiling, c + 1));
         deposition_series.push(curve("walls", &|m| m.wall, c + 2));
@@ -1027,6 +1094,38 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
     )?;
     let beta = dir.join("room-beta.svg");
     plot::log_log(&beta, "Loss-rate coefficient", "particle diameter (um)", "beta (1/h)", &beta_series)?;
+    // With ventilation, the steady indoor/outdoor ratio per size, with its error from beta's.
+    let indoor_outdoor = dir.join("room-indoor-outdoor.svg");
+    let ventilated = rows.iter().any(|r| r.indoor_outdoor.is_some());
+    if ventilated {
+        let series: Vec<Series> = first_seen(rows.iter().map(|r| r.density))
+            .into_iter()
+            .enumerate()
+            .map(|(k, rho)| {
+                let own: Vec<(f64, &Measured)> = rows
+                    .iter()
+                    .filter(|r| r.density == rho)
+                    .filter_map(|r| r.indoor_outdoor.as_ref().map(|m| (r.diameter_um, m)))
+                    .collect();
+                let of = density_label(rows, rho, ", ", " kg/m^3");
+                Series::markers(
+                    format!("C_in / C_out{of} (depo, +- 1 s.e.)"),
+                    own.iter().map(|(d, m)| (*d, m.value)).collect(),
+                )
+                .with_errors(own.iter().map(|(_, m)| m.error).collect())
+                .color(k)
+            })
+            .collect();
+        plot::lines(
+            &indoor_outdoor,
+            "Indoor/outdoor concentration ratio at steady state",
+            "particle diameter (um)",
+            "C_in / C_out",
+            &series,
+            true,
+        )?;
+        eprintln!("figure: {}", indoor_outdoor.display());
+    }
     // The decay curves: the airborne share with its standard error per size, and the fitted
     // line over its window in the same colour; the curves also as one CSV.
     let decay = dir.join("room-decay.svg");
@@ -1085,6 +1184,7 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
     let axis = ["x", "y", "z"];
     for r in rows {
         let label = (r.diameter_um * 1e4).round() / 1e4;
+        let mut panels = Vec::new();
         for (wall, map) in surfaces.iter().zip(&r.maps) {
             let name = study.scene.surface_name(wall.id);
             let (low, high) = match wall.furnishing {
@@ -1124,10 +1224,21 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
             let path =
                 dir.join(format!("room-map-{name}-{label}um{}.csv", density_label(rows, r.density, "-", "kgm3")));
             std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            // The figure shows the room's six surfaces and each furnishing's top, the second
+            // in-plane axis up (z on a wall, y on the floor and ceiling).
+            if wall.furnishing.is_none() || name.ends_with(".top") {
+                let cells = (0..MAP_BINS[1]).map(|j| (0..MAP_BINS[0]).map(|i| map[i * MAP_BINS[1] + j]).collect());
+                let axes = [(axis[b], low[b], high[b]), (axis[a], low[a], high[a])];
+                panels.push(plot::MapPanel { name: name.to_string(), cells: cells.collect(), axes });
+            }
         }
+        let figure = dir.join(format!("room-map-{label}um{}.svg", density_label(rows, r.density, "-", "kgm3")));
+        let title =
+            format!("Deposits of the tracked particles, {label} um{}", density_label(rows, r.density, ", ", " kg/m^3"));
+        plot::maps(&figure, &title, &panels)?;
     }
     eprintln!(
-        "figures: {}, {} and {}; decay curves: {}; deposition maps ({}x{} cells per surface): {}/room-map-SURFACE-SIZEum{}.csv",
+        "figures: {}, {} and {}; decay curves: {}; deposition maps ({}x{} cells per surface): {}/room-map-SURFACE-SIZEum{}.csv, drawn per size as room-map-SIZEum.svg",
         deposition.display(),
         beta.display(),
         decay.display(),

@@ -266,6 +266,9 @@ pub struct RoomPoint {
     pub ceiling: Estimate,
     /// Onto the vertical walls (all four together), m/s.
     pub walls: Estimate,
+    /// Onto each vertical wall, in id order (`x0`, `x1`, `y0`, `y1`; see [`crate::geometry`]),
+    /// m/s: the walls can differ in material, and with openings in the flow that reaches them.
+    pub each_wall: [Estimate; 4],
     /// Loss-rate coefficient, 1/s.
     pub beta: Estimate,
     /// Lai & Nazaroff's model for the same particle and friction velocity.
@@ -310,6 +313,9 @@ pub struct RoomPoint {
     /// room's floor, ceiling and vertical walls (the furnishings' faces are in `furnishings`):
     /// with those and `balance`'s exhausted and airborne, the whole release, exactly.
     pub deposited: [(usize, f64); 3],
+    /// Deposited count and mass (kg) of the tracked particles over the whole run onto each
+    /// vertical wall (`x0`, `x1`, `y0`, `y1`): together `deposited`'s walls.
+    pub wall_deposited: [(usize, f64); 4],
     /// Each furnishing's deposition figures, in the order of [`Scene::furnishings`].
     pub furnishings: Vec<FurnishingPoint>,
     /// All surfaces' area over the air's volume, 1/m ([`Scene::surface_to_volume`]).
@@ -343,6 +349,10 @@ pub struct FurnishingPoint {
     /// Deposited count and mass (kg) per face.
     pub face_deposited: [(usize, f64); 6],
 }
+
+/// The id of a room's first vertical wall, `x0`; `x1`, `y0` and `y1` follow it (see
+/// [`crate::geometry`]).
+const FIRST_WALL: usize = 2;
 
 /// The deposition maps' grid.
 pub const MAP_BINS: [usize; 2] = [20, 20];
@@ -526,6 +536,7 @@ impl RoomStudy {
                 floor: v(Orientation::Floor),
                 ceiling: v(Orientation::Ceiling),
                 walls: v(Orientation::Wall),
+                each_wall: std::array::from_fn(|k| result.deposition_velocity(&[FIRST_WALL + k])),
                 beta,
                 indoor_outdoor,
                 filter_removal: f.removal(d),
@@ -574,6 +585,9 @@ impl RoomStudy {
                         .walls_facing(o)
                         .iter()
                         .fold((0, 0.0), |(n, m), &w| (n + balance.deposited[w], m + balance.deposited_mass[w]))
+                }),
+                wall_deposited: std::array::from_fn(|k| {
+                    (balance.deposited[FIRST_WALL + k], balance.deposited_mass[FIRST_WALL + k])
                 }),
                 decay,
                 decay_fit,

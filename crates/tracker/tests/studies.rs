@@ -2,7 +2,7 @@
 //! excursions against plain tracking.
 
 use depo_tracker::studies::{ChannelStudy, RoomStudy, CHANNEL_COARSE_FACTOR, CHANNEL_INNERMOST_LEVEL, CHANNEL_SWEEPS};
-use depo_tracker::{run, Estimate, Excursions, Injection, NearWall, Scene, SizeDistribution};
+use depo_tracker::{run, Estimate, Excursions, Injection, NearWall, Scene, SizeDistribution, WallBehaviour};
 
 /// A `tau+` no particle can have at the channel's friction velocity is an error naming it, not
 /// a run of the largest particle under the wrong label.
@@ -194,6 +194,37 @@ fn room_deposition_matches_lai_nazaroff_where_it_is_measurable() {
     assert!((0.7..1.3).contains(&ratio), "3 um floor: ratio {ratio}");
     assert_eq!(coarse.ceiling.events, 0, "nothing settles upwards");
     assert!(coarse.ceiling.upper_bound > 0.0 && coarse.ceiling.upper_bound < coarse.floor.value);
+}
+
+/// Room: each vertical wall is a figure of its own, and the four together are the walls'
+/// figure. With the `x0` wall a mirror and the others sinks, 0.03 um particles (which reach
+/// every wall by Brownian and turbulent diffusion) deposit on `x0` not at all and on the
+/// other three each at about the walls' rate over the sinks alone: four thirds of the
+/// four walls' figure, which spreads their deposits over all four walls' area.
+#[test]
+fn a_room_reports_each_vertical_wall_and_a_mirror_wall_takes_nothing() {
+    let mut study = RoomStudy { diameters: vec![0.03e-6], count: 1200, target_error: None, ..RoomStudy::default() };
+    study.scene.walls[2] = WallBehaviour::Reflect;
+    let p = &study.run(|_| {}).unwrap()[0];
+    assert_eq!(p.each_wall[0].events, 0, "{:?}", p.each_wall[0]);
+    assert_eq!(p.wall_deposited[0].0, 0);
+    let sinks = &p.each_wall[1..];
+    assert!(sinks.iter().all(|e| e.events > 300 && e.error < 0.15 * e.value), "{sinks:?}");
+    assert_eq!(p.each_wall.iter().map(|e| e.events).sum::<usize>(), p.walls.events);
+    let counted: usize = p.wall_deposited.iter().map(|d| d.0).sum();
+    let mass: f64 = p.wall_deposited.iter().map(|d| d.1).sum();
+    assert_eq!(counted, p.deposited[2].0);
+    assert!((mass - p.deposited[2].1).abs() <= 1e-12 * p.deposited[2].1);
+    // The walls' figure is the area-weighted mean of the four: x0 and x1 are 3 m x 2.5 m,
+    // y0 and y1 4 m x 2.5 m.
+    let areas = [7.5, 7.5, 10.0, 10.0];
+    let mean = p.each_wall.iter().zip(areas).map(|(e, a)| e.value * a).sum::<f64>() / 35.0;
+    assert!((mean - p.walls.value).abs() <= 1e-9 * p.walls.value, "{mean} against {:?}", p.walls);
+    let over_sinks = p.walls.value * 35.0 / 27.5;
+    for (k, e) in sinks.iter().enumerate() {
+        let z = (e.value - over_sinks) / e.error;
+        assert!(z.abs() < 4.0, "wall {}: {:?} against the sinks' mean {over_sinks} (z = {z})", k + 1, e);
+    }
 }
 
 /// Saffman lift, optional: it raises deposition in the diffusion-impaction regime, where the
