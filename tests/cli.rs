@@ -1389,7 +1389,7 @@ fn room_scene_filters_reach_the_study() {
         ),
     )
     .unwrap();
-    let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json"]);
+    let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"]);
     assert_eq!(report["supply_share"], 0.5);
     assert_eq!(report["recirculation_per_hour"], 4.0);
     let one = &report["sizes"][0];
@@ -1397,6 +1397,15 @@ fn room_scene_filters_reach_the_study() {
     let beta = one["beta_per_hour"]["value"].as_f64().unwrap();
     let ratio = one["indoor_outdoor"]["value"].as_f64().unwrap();
     assert!((ratio - (0.9 * 0.5 + 0.2 * 0.5) / (1.0 + 2.0 + beta)).abs() < 1e-9, "{ratio} with beta {beta}");
+    // Each filter's efficiency at the size run, the recirculation's read off its table.
+    assert_eq!(one["supply_filter_efficiency"], 0.8);
+    assert!((one["recirculation_filter_efficiency"].as_f64().unwrap() - 0.5).abs() < 1e-12, "{one}");
+    let table = ok_text(&["room", scene.to_str().unwrap(), "--no-plot"]);
+    assert!(table.contains("Supply filter efficiency eta_s at the sizes run: 0.800."), "{table}");
+    let csv = ok_text(&["room", scene.to_str().unwrap(), "--format", "csv", "--no-plot"]);
+    let (header, row) = csv.split_once('\n').unwrap();
+    let column = header.split(',').position(|h| h == "supply_filter_efficiency").expect("the supply filter's column");
+    assert_eq!(row.split(',').nth(column), Some("0.8"), "{csv}");
     let bad = dir.join("bad-share.toml");
     std::fs::write(&bad, format!("{base}supply_share = 1.5\n")).unwrap();
     user_error(&["room", bad.to_str().unwrap()], "ventilation.supply_share");

@@ -7,6 +7,7 @@ use clap::Args as ClapArgs;
 use depo::tracker::correlations::LaiNazaroff;
 use depo::tracker::decay::MIN_AIRBORNE;
 use depo::tracker::distribution::{first_seen, DistributionStudy};
+use depo::tracker::filtration::Filtration;
 use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::geometry::in_plane_axes;
 use depo::tracker::studies::{self, MAP_BINS};
@@ -196,6 +197,14 @@ struct Row {
     /// The recirculation filter's removal `eta_r a_r` at this size, 1/h (with one).
     #[serde(skip_serializing_if = "Option::is_none")]
     filter_removal_per_hour: Option<f64>,
+    /// The supply filter's single-pass efficiency `eta_s` at this size (with a filtered
+    /// supply share).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    supply_filter_efficiency: Option<f64>,
+    /// The recirculation filter's single-pass efficiency `eta_r` at this size (with
+    /// recirculation).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    recirculation_filter_efficiency: Option<f64>,
     lai_nazaroff: Model,
     particle_steps: u64,
     /// Particles run for this size.
@@ -398,7 +407,7 @@ struct Report<'a> {
 }
 
 /// A size's row; `size` the room's, m; `density` its particles', kg/m^3.
-fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
+fn row(p: &RoomPoint, size: [f64; 3], density: f64, filtration: &Filtration) -> Row {
     let per_hour = |e: Estimate| Measured::from(e).scaled(3600.0);
     let (floor, ceiling, walls) = (Measured::from(p.floor), Measured::from(p.ceiling), Measured::from(p.walls));
     let unresolved =
@@ -424,6 +433,9 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64) -> Row {
         beta_per_hour: per_hour(p.beta),
         indoor_outdoor: p.indoor_outdoor.map(Measured::from),
         filter_removal_per_hour: (p.filter_removal > 0.0).then_some(p.filter_removal * 3600.0),
+        supply_filter_efficiency: (filtration.supply_share > 0.0).then(|| filtration.supply_filter.at(p.diameter)),
+        recirculation_filter_efficiency: (filtration.recirculation > 0.0)
+            .then(|| filtration.recirculation_filter.at(p.diameter)),
         lai_nazaroff: Model {
             floor: p.model.floor,
             ceiling: p.model.ceiling,
@@ -540,7 +552,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
     };
     // Each run's density: the bins' with a size distribution (in the points' order).
     let density = |i: usize| distribution.as_ref().map_or(study.density, |d| d.bins[i].density);
-    let rows: Vec<Row> = points.iter().enumerate().map(|(i, p)| row(p, size, density(i))).collect();
+    let rows: Vec<Row> = points.iter().enumerate().map(|(i, p)| row(p, size, density(i), &study.filtration)).collect();
     let ventilated = study.scene.exchange_rate() > 0.0;
     let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();
     match args.format {
@@ -600,6 +612,10 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             if ventilated {
                 header.extend(["indoor_outdoor", "indoor_outdoor_error"]);
             }
+            let supply_filtered = study.filtration.supply_share > 0.0;
+            if supply_filtered {
+                header.push("supply_filter_efficiency");
+            }
             header.extend([
                 "beta_fitted_per_hour",
                 "beta_fitted_error",
@@ -655,6 +671,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     if ventilated {
                         let io = r.indoor_outdoor.as_ref().map_or([f64::NAN; 2], |m| [m.value, m.error]);
                         row.extend([x(io[0]), x(io[1])]);
+                    }
+                    if supply_filtered {
+                        row.push(x(r.supply_filter_efficiency.unwrap_or(0.0)));
                     }
                     let fitted =
                         r.decay_fit.as_ref().map_or([f64::NAN; 2], |f| [f.beta_per_hour.value, f.beta_per_hour.error]);
@@ -721,6 +740,15 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 );
             }
             let f = &study.filtration;
+            if f.supply_share > 0.0 {
+                out!(
+                    "Supply filter efficiency eta_s at the sizes run: {}.",
+                    rows.iter()
+                        .map(|r| format!("{:.3}", r.supply_filter_efficiency.unwrap_or(0.0)))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                );
+            }
             if f.supply_share > 0.0 || f.recirculation > 0.0 {
                 out!(
                     "Filters: a share {} of the exchange through the supply filter, recirculation {} per hour through its \
