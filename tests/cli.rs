@@ -1191,6 +1191,11 @@ fn room_reports_a_size_distribution_mass_balance() {
     };
     assert_eq!(named(".csv"), 8 * 6, "a map per bin and wall");
     assert_eq!(named(".svg"), 8, "a figure of the maps per bin");
+    // The PM figure: all the mass, PM10 and PM2.5, each fate's share with its error bar.
+    let pm = std::fs::read_to_string(plots.join("room-pm.svg")).unwrap();
+    for label in ["\nall\n", "\nPM10\n", "\nPM2.5\n", "floor (+- 1 s.e.)", "airborne at the end (+- 1 s.e.)"] {
+        assert!(pm.contains(label), "{label:?} in {pm}");
+    }
     assert!(plots.join(format!("room-map-{first}um-1500kgm3.svg")).exists(), "{first}");
     // The CSV: one row per class, the same numbers.
     let csv =

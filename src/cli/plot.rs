@@ -280,6 +280,81 @@ fn chart(
     Ok(())
 }
 
+/// One series of [`bars`]: a bar per group, each with its standard error.
+pub struct Bars {
+    pub name: String,
+    pub values: Vec<f64>,
+    pub errors: Vec<f64>,
+}
+
+/// Draws a grouped bar chart into the SVG file `path`: for each of `groups` (named under the
+/// axis) one bar per series side by side, in the series' colours, each with a standard
+/// error bar; the legend below names the series.
+pub fn bars(path: &Path, title: &str, y_label: &str, groups: &[&str], series: &[Bars]) -> Result<(), Error> {
+    let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
+    let top = series
+        .iter()
+        .flat_map(|s| s.values.iter().zip(&s.errors).map(|(v, e)| v + e))
+        .fold(0.0f64, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let rows = series.len().div_ceil(2) as u32;
+    let legend_height = rows * LEGEND_ROW + 15;
+    let root = SVGBackend::new(path, (WIDTH, PLOT_HEIGHT + legend_height)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let (upper, lower) = root.split_vertically(PLOT_HEIGHT);
+    let mut chart = ChartBuilder::on(&upper)
+        .caption(title, ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..groups.len() as f64, 0.0..top * 1.1)
+        .map_err(|e| fail(&e))?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(0)
+        .y_desc(y_label)
+        .y_label_formatter(&|v| tick(*v))
+        .draw()
+        .map_err(|e| fail(&e))?;
+    let width = 0.8 / series.len().max(1) as f64;
+    for (k, s) in series.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        let left = |g: usize| g as f64 + 0.1 + k as f64 * width;
+        chart
+            .draw_series(
+                s.values
+                    .iter()
+                    .enumerate()
+                    .map(|(g, &v)| Rectangle::new([(left(g), 0.0), (left(g) + width * 0.9, v)], color.filled())),
+            )
+            .map_err(|e| fail(&e))?;
+        chart
+            .draw_series(s.values.iter().zip(&s.errors).enumerate().map(|(g, (&v, &e))| {
+                let x = left(g) + width * 0.45;
+                ErrorBar::new_vertical(x, (v - e).max(0.0), v, v + e, BLACK.stroke_width(1), 6)
+            }))
+            .map_err(|e| fail(&e))?;
+    }
+    let centred = TextStyle::from(("sans-serif", 15).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
+    for (g, name) in groups.iter().enumerate() {
+        let (x, y) = chart.backend_coord(&(g as f64 + 0.5, 0.0));
+        upper.draw(&Text::new(*name, (x, y + 8), centred.clone())).map_err(|e| fail(&e))?;
+    }
+    let font = TextStyle::from(("sans-serif", 14).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    let column_width = (WIDTH as i32 - 75) / 2;
+    for (k, s) in series.iter().enumerate() {
+        let (row, column) = (k as u32 % rows.max(1), k as u32 / rows.max(1));
+        let x = 75 + column as i32 * column_width;
+        let y = (row * LEGEND_ROW + LEGEND_ROW / 2 + 5) as i32;
+        let color = PALETTE[k % PALETTE.len()];
+        lower.draw(&Rectangle::new([(x + 5, y - 6), (x + 25, y + 6)], color.filled())).map_err(|e| fail(&e))?;
+        lower.draw(&Text::new(s.name.as_str(), (x + 40, y), font.clone())).map_err(|e| fail(&e))?;
+    }
+    root.present().map_err(|e| fail(&e))?;
+    Ok(())
+}
+
 /// One panel of [`maps`]: a named grid of counts, row `i` the `i`-th band from the bottom along
 /// the vertical axis `axes[0]`, column `j` the `j`-th along the horizontal axis `axes[1]`,
 /// each axis `(name, low, high)` in m.

@@ -859,7 +859,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
         if let Some(d) = &distribution {
             let figure = args.plot.join("room-distribution.svg");
             d.plot(&figure)?;
-            eprintln!("figure: {}", figure.display());
+            let pm = args.plot.join("room-pm.svg");
+            d.plot_pm(&pm)?;
+            eprintln!("figures: {} and {}", figure.display(), pm.display());
         }
     }
     Ok(())

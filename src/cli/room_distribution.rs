@@ -10,6 +10,9 @@ use super::plot::{self, Series};
 use super::room::Measured;
 use super::{print_csv, Error};
 
+/// What a figure reads off a class's split: a value and its standard error.
+type Pick<'a> = &'a dyn Fn(&Split) -> (f64, f64);
+
 /// A part of the mass: the value, its standard error over the runs' randomness, and the bound
 /// on the quadrature's error (`null` where a bin with mass has no neighbour to bound it).
 #[derive(Serialize)]
@@ -291,6 +294,52 @@ impl DistributionReport {
                 row.push(s.beta_mass_share.to_string());
                 row
             }),
+        )
+    }
+
+    /// The PM figure: for all the mass, PM10 and PM2.5, the share of each one's injected mass
+    /// on the floor, on the ceiling and walls, on the furnishings (if any), airborne and
+    /// exhausted at the end, with their standard errors.
+    pub fn plot_pm(&self, path: &Path) -> Result<(), Error> {
+        let classes = self.classes();
+        let share = |pick: Pick| -> (Vec<f64>, Vec<f64>) {
+            classes
+                .iter()
+                .map(|(_, s)| {
+                    let (v, e) = pick(s);
+                    if s.injected > 0.0 {
+                        (v / s.injected, e / s.injected)
+                    } else {
+                        (0.0, 0.0)
+                    }
+                })
+                .unzip()
+        };
+        let mut fates: Vec<(&str, Pick)> = vec![
+            ("floor", &|s: &Split| (s.floor.value, s.floor.error)),
+            ("ceiling and walls", &|s: &Split| (s.ceiling.value + s.walls.value, s.ceiling.error.hypot(s.walls.error))),
+        ];
+        if self.furnished {
+            fates.push(("furnishings", &|s: &Split| (s.furnishings.value, s.furnishings.error)));
+        }
+        fates.push(("airborne at the end", &|s: &Split| (s.airborne.value, s.airborne.error)));
+        if classes.iter().any(|(_, s)| s.exhausted.value > 0.0) {
+            fates.push(("exhausted", &|s: &Split| (s.exhausted.value, s.exhausted.error)));
+        }
+        let series: Vec<plot::Bars> = fates
+            .into_iter()
+            .map(|(name, pick)| {
+                let (values, errors) = share(pick);
+                plot::Bars { name: format!("{name} (+- 1 s.e.)"), values, errors }
+            })
+            .collect();
+        let groups: Vec<&str> = classes.iter().map(|(name, _)| *name).collect();
+        plot::bars(
+            path,
+            "Where the mass goes: all of it, PM10 and PM2.5",
+            "share of the class's mass",
+            &groups,
+            &series,
         )
     }
 
