@@ -1,25 +1,13 @@
 //! End-to-end tests of the `depo` command: each subcommand on small inputs, its output checked
 //! against the library, and user errors as one line with a non-zero exit and no panic.
 
-use std::process::{Command, Output};
+use std::process::Command;
 
 use depo::wall_model::WallLaw;
 use serde_json::Value;
 
-fn depo(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_depo")).args(args).output().expect("run depo")
-}
-
-/// stdout of a run that must succeed.
-fn ok_text(args: &[&str]) -> String {
-    let out = depo(args);
-    assert!(out.status.success(), "depo {args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8(out.stdout).expect("UTF-8 output")
-}
-
-fn ok_json(args: &[&str]) -> Value {
-    serde_json::from_str(&ok_text(args)).expect("JSON output")
-}
+mod common;
+use common::{depo, ok_json, ok_text};
 
 /// A user error: non-zero exit, one line on stderr that names `what`, no panic.
 fn user_error(args: &[&str], what: &str) {

@@ -3,27 +3,14 @@
 //! every surface key it offers; an entry short of a constant is an error naming the key.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 
 /// The synthetic series of the examples: the `li1997-sio2` curve (q = 1/2) with 2 % noise.
 const DATA: &str = "examples/li1997-synthetic.csv";
 
-fn depo(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_depo")).args(args).output().expect("run depo")
-}
-
-/// stdout of a run that must succeed.
-fn ok_text(args: &[&str]) -> String {
-    let out = depo(args);
-    assert!(out.status.success(), "depo {args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8(out.stdout).expect("UTF-8 output")
-}
-
-fn ok_json(args: &[&str]) -> Value {
-    serde_json::from_str(&ok_text(args)).expect("JSON output")
-}
+mod common;
+use common::{depo, ok_json, ok_text};
 
 /// The fit of the example data (with q = 1/2, its curve's) as JSON, its entry for `surface`.
 fn fit_for(surface: &str) -> Value {
