@@ -280,6 +280,15 @@ impl SceneSource {
         }
     }
 
+    /// `keys` ordered by the line the file gives each on, the keys it leaves out last.
+    fn in_file_order<'k>(&self, keys: &[&'k str]) -> Vec<&'k str> {
+        let root = toml::de::DeTable::parse(&self.text).ok();
+        let line = |key: &str| root.as_ref().and_then(|r| line_of_key(&self.text, r.get_ref(), key));
+        let mut keys = keys.to_vec();
+        keys.sort_by_key(|k| line(k).unwrap_or(usize::MAX));
+        keys
+    }
+
     /// `message` at the line of the byte `offset` into the file (a span of its values).
     fn at_offset(&self, offset: usize, message: impl std::fmt::Display) -> Error {
         format!("{} line {}: {message}", self.name, line_of(&self.text, offset))
@@ -423,7 +432,11 @@ fn wall_behaviour(src: &SceneSource, prefix: &str, file: &WallFile) -> Result<Wa
                     };
                     let (k, kappa, vc) = (need(file.k, "k")?, need(file.kappa, "kappa")?, need(file.vc, "vc")?);
                     let params = LawParams::symmetric(k, kappa, vc, file.p.unwrap_or(1.0), file.q.unwrap_or(1.0));
-                    WallLaw::new(params).map_err(|e| at_surface(format!("`{prefix}`: {e}")))?
+                    // The law's field as the file's key: `k1`/`k2` are the file's `k`, and so on.
+                    WallLaw::new(params).map_err(|e| {
+                        let file_key = e.field.trim_end_matches(['1', '2']);
+                        at(file_key, format!("`{prefix}`: {e}"))
+                    })?
                 }
                 (None, false) => {
                     return Err(at_surface(format!(
@@ -442,8 +455,11 @@ fn wall_behaviour(src: &SceneSource, prefix: &str, file: &WallFile) -> Result<Wa
                     let d_ref = file.reference_diameter.ok_or_else(|| {
                         at("size_exponent", format!("`{}` is needed with a size exponent", key("reference_diameter")))
                     })?;
-                    let size = SizeDependence::new(d_ref, alpha);
-                    Some(size.map_err(|e| at("size_exponent", format!("`{prefix}`: {e}")))?)
+                    let size = SizeDependence::new(d_ref, alpha).map_err(|e| {
+                        let file_key = if e.field == "reference_diameter" { e.field } else { "size_exponent" };
+                        at(file_key, format!("`{prefix}`: {e}"))
+                    })?;
+                    Some(size)
                 }
             };
             Ok(WallBehaviour::Law { law, size })
@@ -489,7 +505,9 @@ fn apply_walls(src: &SceneSource, scene: &mut Scene, walls: &WallsFile) -> Resul
         ),
     };
     if foreign {
-        return Err(src.at(keys, "`walls`: a room has floor, ceiling, x0, x1, y0, y1; a channel has lower and upper"));
+        // At the first of the foreign keys in the file.
+        let keys = src.in_file_order(keys);
+        return Err(src.at(&keys, "`walls`: a room has floor, ceiling, x0, x1, y0, y1; a channel has lower and upper"));
     }
     Ok(())
 }
@@ -1188,6 +1206,12 @@ mod tests {
                          top = { preset = \"nope\" }\n";
         let message = room_error("face", furnished);
         assert!(message.starts_with(" line 14: `furnishings[1].top.preset`: "), "{message}");
+        // A law's own constant at fault: its line, not the surface's.
+        let message = room_error("p", "[walls.floor]\nk = 10.0\nkappa = 0.2\nvc = 0.07\n\np = -1.0\n");
+        assert!(message.starts_with(" line 13: `walls.floor`: "), "{message}");
+        let sized = "[walls.floor]\npreset = \"dunn1995-copper\"\nsize_exponent = 1.5\n\nreference_diameter = -1.0\n";
+        let message = room_error("reference", sized);
+        assert!(message.starts_with(" line 12: `walls.floor`: "), "{message}");
     }
 
     #[test]
@@ -1195,6 +1219,10 @@ mod tests {
         let head = "[channel]\nre_tau = 150.0\n[particles]\ntau_plus = [1.0]\ncount = 10\n";
         let message = error("lower", &format!("{head}[walls]\nlower = {{ preset = \"nope\" }}\n"), "channel");
         assert!(message.starts_with(" line 7: `walls.lower.preset`: "), "{message}");
+        // Room walls in a channel: the first of them in the file.
+        let foreign = format!("{head}[walls]\nx0 = {{ behaviour = \"sink\" }}\nceiling = {{ behaviour = \"sink\" }}\n");
+        let message = error("foreign", &foreign, "channel");
+        assert!(message.starts_with(" line 7: `walls`: a room has"), "{message}");
         assert_eq!(
             error("seconds", &format!("{head}[run]\nduration_plus = 10.0\ndt = 0.1\n"), "channel"),
             " line 8: a channel takes `run.dt_plus` and `run.duration_plus` in wall units"
