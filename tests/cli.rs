@@ -1356,6 +1356,18 @@ fn distribution_shares_are_of_the_whole_mass_and_a_missed_mode_is_an_error() {
     assert_eq!(d["mass_unit"], "share of the distribution's mass");
     assert!((d["outside_bins"].as_f64().unwrap() - 0.045_500).abs() < 1e-6, "{}", d["outside_bins"]);
     assert!((d["all"]["injected"].as_f64().unwrap() - 0.954_500).abs() < 1e-6, "{}", d["all"]["injected"]);
+    // Bins all above 12 um hold no PM10 or PM2.5: the PM figure leaves both out and says so.
+    let coarse = dir.join("coarse.toml");
+    std::fs::write(
+        &coarse,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[[particles.modes]]\nmass_median = 30e-6\ngeometric_sd = 1.3\n\
+         [particles]\ncount = 10\ntarget_error = 0.0\nbins = 4\nbin_range = [15e-6, 60e-6]\n[run]\nduration = 0.0\n",
+    )
+    .unwrap();
+    let plots = dir.join("plots");
+    ok_text(&["room", coarse.to_str().unwrap(), "--plot", plots.to_str().unwrap()]);
+    let pm = std::fs::read_to_string(plots.join("room-pm.svg")).unwrap();
+    assert!(pm.contains("no PM10 or PM2.5 mass injected") && !pm.contains("\nPM10\n"), "{pm}");
     let missed = scene("missed.toml", "[0.01e-6, 0.05e-6]");
     user_error(
         &["room", missed.to_str().unwrap(), "--no-plot"],
@@ -1399,6 +1411,16 @@ fn room_scene_filters_reach_the_study() {
     let (header, row) = csv.split_once('\n').unwrap();
     let column = header.split(',').position(|h| h == "supply_filter_efficiency").expect("the supply filter's column");
     assert_eq!(row.split(',').nth(column), Some("0.8"), "{csv}");
+    let column = header.split(',').position(|h| h == "recirculation_filter_efficiency").expect("the recirculation's");
+    assert_eq!(row.split(',').nth(column), Some("0.5"), "{csv}");
+    assert!(table.contains("Recirculation filter efficiency eta_r at the sizes run: 0.500."), "{table}");
+    // Without air exchange no air comes through the supply: its filter is not reported.
+    let closed = dir.join("closed.toml");
+    let text = format!("{base}supply_share = 0.5\nsupply_filter = 0.8\n").replace("air_changes_per_hour = 1.0", "");
+    std::fs::write(&closed, text).unwrap();
+    let report = ok_json(&["room", closed.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    assert!(report["sizes"][0].get("supply_filter_efficiency").is_none(), "{}", report["sizes"][0]);
+    assert!(!ok_text(&["room", closed.to_str().unwrap(), "--no-plot"]).contains("Supply filter efficiency"));
     let bad = dir.join("bad-share.toml");
     std::fs::write(&bad, format!("{base}supply_share = 1.5\n")).unwrap();
     user_error(&["room", bad.to_str().unwrap()], "ventilation.supply_share");

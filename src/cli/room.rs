@@ -433,7 +433,9 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64, filtration: &Filtration) -> 
         beta_per_hour: per_hour(p.beta),
         indoor_outdoor: p.indoor_outdoor.map(Measured::from),
         filter_removal_per_hour: (p.filter_removal > 0.0).then_some(p.filter_removal * 3600.0),
-        supply_filter_efficiency: (filtration.supply_share > 0.0).then(|| filtration.supply_filter.at(p.diameter)),
+        // The supply filter acts on the exchange's air: only with ventilation.
+        supply_filter_efficiency: (filtration.supply_share > 0.0 && p.indoor_outdoor.is_some())
+            .then(|| filtration.supply_filter.at(p.diameter)),
         recirculation_filter_efficiency: (filtration.recirculation > 0.0)
             .then(|| filtration.recirculation_filter.at(p.diameter)),
         lai_nazaroff: Model {
@@ -543,7 +545,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
         study.diameters = points.iter().map(|p| p.diameter).collect();
     }
     let furnished = !study.scene.furnishings.is_empty();
-    let distribution = balance.map(|b| DistributionReport::new(&b, study.scene.free_volume(), furnished));
+    let distribution = balance.map(|b| {
+        DistributionReport::new(&b, study.scene.free_volume(), (furnished, study.scene.exchange_rate() > 0.0))
+    });
     let seconds = start.elapsed().as_secs_f64();
     let Geometry::Room { size } = study.scene.geometry else { unreachable!("a room study has a room") };
     let u_star = match study.scene.flow {
@@ -612,9 +616,13 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             if ventilated {
                 header.extend(["indoor_outdoor", "indoor_outdoor_error"]);
             }
-            let supply_filtered = study.filtration.supply_share > 0.0;
+            let supply_filtered = rows.iter().any(|r| r.supply_filter_efficiency.is_some());
             if supply_filtered {
                 header.push("supply_filter_efficiency");
+            }
+            let recirculated = rows.iter().any(|r| r.recirculation_filter_efficiency.is_some());
+            if recirculated {
+                header.push("recirculation_filter_efficiency");
             }
             header.extend([
                 "beta_fitted_per_hour",
@@ -674,6 +682,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     }
                     if supply_filtered {
                         row.push(x(r.supply_filter_efficiency.unwrap_or(0.0)));
+                    }
+                    if recirculated {
+                        row.push(x(r.recirculation_filter_efficiency.unwrap_or(0.0)));
                     }
                     let fitted =
                         r.decay_fit.as_ref().map_or([f64::NAN; 2], |f| [f.beta_per_hour.value, f.beta_per_hour.error]);
@@ -740,14 +751,16 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 );
             }
             let f = &study.filtration;
-            if f.supply_share > 0.0 {
-                out!(
-                    "Supply filter efficiency eta_s at the sizes run: {}.",
-                    rows.iter()
-                        .map(|r| format!("{:.3}", r.supply_filter_efficiency.unwrap_or(0.0)))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                );
+            // Each filter's single-pass efficiency at the sizes run, where it acts.
+            let efficiencies = |pick: &dyn Fn(&Row) -> Option<f64>| -> Option<String> {
+                let values: Option<Vec<String>> = rows.iter().map(|r| pick(r).map(|e| format!("{e:.3}"))).collect();
+                values.map(|v| v.join(", "))
+            };
+            if let Some(list) = efficiencies(&|r| r.supply_filter_efficiency) {
+                out!("Supply filter efficiency eta_s at the sizes run: {list}.");
+            }
+            if let Some(list) = efficiencies(&|r| r.recirculation_filter_efficiency) {
+                out!("Recirculation filter efficiency eta_r at the sizes run: {list}.");
             }
             if f.supply_share > 0.0 || f.recirculation > 0.0 {
                 out!(
@@ -885,9 +898,6 @@ fn density_label(rows: &[Row], density: f64, sep: &str, unit: &str) -> String {
     }
 }
 
-/// The furnishings' table under the per-size one: per size and furnishing, the deposition
-/// velocity (m/s) onto all its faces, its top, its bottom and its sides, and its share of the
-/// release.
 /// Each vertical wall's deposition velocity, where the walls differ.
 fn walls_table(rows: &[Row]) {
     out!("Each vertical wall (m/s; x0 at x = 0, x1 opposite it, y0 at y = 0, y1 opposite it):");
@@ -898,6 +908,9 @@ fn walls_table(rows: &[Row]) {
     }
 }
 
+/// The furnishings' table under the per-size one: per size and furnishing, the deposition
+/// velocity (m/s) onto all its faces, its top, its bottom and its sides, and its share of the
+/// release.
 fn furnishings_table(rows: &[Row], study: &RoomStudy) {
     let scene = &study.scene;
     out!(
@@ -1091,13 +1104,13 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
             }
             series
         };
-        // Each density in its own three colours.
-        let c = 3 * k;
+        // Each density in its own colours: three for the room's surfaces, then one for each
+        // furnishing's faces together, beside them.
+        let boxes = own.first().map_or(0, |r| r.furnishings.len());
+        let c = (3 + boxes) * k;
         deposition_series.extend(measured("floor", &|r| &r.floor, c));
         deposition_series.extend(measured("ceiling", &|r| &r.ceiling, c + 1));
         deposition_series.extend(measured("walls", &|r| &r.walls, c + 2));
-        // Each furnishing's faces together, beside the room's surfaces.
-        let boxes = own.first().map_or(0, |r| r.furnishings.len());
         for j in 0..boxes {
             let name = format!("{} (all faces)", own[0].furnishings[j].name);
             deposition_series.extend(measured(&name, &|r| &r.furnishings[j].all, c + 3 + j));

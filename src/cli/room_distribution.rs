@@ -83,6 +83,9 @@ pub struct DistributionReport {
     /// Whether the room has furnishings (the tables and CSV then show their part).
     #[serde(skip)]
     pub furnished: bool,
+    /// Whether the room is ventilated (the figure then shows what was exhausted, zero or not).
+    #[serde(skip)]
+    pub ventilated: bool,
 }
 
 /// What the masses are in.
@@ -101,8 +104,9 @@ pub const PM_DEFINITION: &str = "PM2.5 and PM10: mass of particles of aerodynami
 correction) below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN 12341:2014, ISO 7708)";
 
 impl DistributionReport {
-    /// The report of `balance` in a room whose air fills `volume` (m^3), `furnished` or not.
-    pub fn new(balance: &MassBalance, volume: f64, furnished: bool) -> Self {
+    /// The report of `balance` in a room whose air fills `volume` (m^3), `furnished` and
+    /// `ventilated` or not.
+    pub fn new(balance: &MassBalance, volume: f64, (furnished, ventilated): (bool, bool)) -> Self {
         // Masses in kg in the room, or as shares of the distribution's mass: in the bins and
         // beyond them (shares of the bins' mass alone would make the mass beyond them any
         // multiple of it).
@@ -162,6 +166,7 @@ impl DistributionReport {
             bins,
             pm_definition: PM_DEFINITION,
             furnished,
+            ventilated,
         }
     }
 
@@ -298,20 +303,19 @@ impl DistributionReport {
     }
 
     /// The PM figure: for all the mass, PM10 and PM2.5, the share of each one's injected mass
-    /// on the floor, on the ceiling and walls, on the furnishings (if any), airborne and
-    /// exhausted at the end, with their standard errors.
+    /// on the floor, on the ceiling and walls (their errors combined as if independent, which
+    /// can only overstate the sum's), on the furnishings (if any), airborne and, with
+    /// ventilation, exhausted at the end, with their standard errors. A class with no mass
+    /// injected is left out, and the title says so.
     pub fn plot_pm(&self, path: &Path) -> Result<(), Error> {
-        let classes = self.classes();
+        let all = self.classes();
+        let classes: Vec<&(&str, &Split)> = all.iter().filter(|(_, s)| s.injected > 0.0).collect();
         let share = |pick: Pick| -> (Vec<f64>, Vec<f64>) {
             classes
                 .iter()
                 .map(|(_, s)| {
                     let (v, e) = pick(s);
-                    if s.injected > 0.0 {
-                        (v / s.injected, e / s.injected)
-                    } else {
-                        (0.0, 0.0)
-                    }
+                    (v / s.injected, e / s.injected)
                 })
                 .unzip()
         };
@@ -323,7 +327,7 @@ impl DistributionReport {
             fates.push(("furnishings", &|s: &Split| (s.furnishings.value, s.furnishings.error)));
         }
         fates.push(("airborne at the end", &|s: &Split| (s.airborne.value, s.airborne.error)));
-        if classes.iter().any(|(_, s)| s.exhausted.value > 0.0) {
+        if self.ventilated {
             fates.push(("exhausted", &|s: &Split| (s.exhausted.value, s.exhausted.error)));
         }
         let series: Vec<plot::Bars> = fates
@@ -334,13 +338,13 @@ impl DistributionReport {
             })
             .collect();
         let groups: Vec<&str> = classes.iter().map(|(name, _)| *name).collect();
-        plot::bars(
-            path,
-            "Where the mass goes: all of it, PM10 and PM2.5",
-            "share of the class's mass",
-            &groups,
-            &series,
-        )
+        let none: Vec<&str> = all.iter().filter(|(_, s)| s.injected <= 0.0).map(|(name, _)| *name).collect();
+        let title = if none.is_empty() {
+            "Where the mass goes: all of it, PM10 and PM2.5".to_string()
+        } else {
+            format!("Where the mass goes (no {} mass injected)", none.join(" or "))
+        };
+        plot::bars(path, &title, "share of the class's mass", &groups, &series)
     }
 
     /// The figure: per bin, the mass per unit `ln d` injected and where it went, against the

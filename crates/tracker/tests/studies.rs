@@ -199,8 +199,8 @@ fn room_deposition_matches_lai_nazaroff_where_it_is_measurable() {
 /// Room: each vertical wall is a figure of its own, and the four together are the walls'
 /// figure. With the `x0` wall a mirror and the others sinks, 0.03 um particles (which reach
 /// every wall by Brownian and turbulent diffusion) deposit on `x0` not at all and on the
-/// other three each at about the walls' rate over the sinks alone: four thirds of the
-/// four walls' figure, which spreads their deposits over all four walls' area.
+/// other three each at about the sinks' own rate: the walls' figure spreads their deposits
+/// over all four walls' 35 m^2, so the sinks' rate is 35 / 27.5 of it (x0 is 7.5 m^2).
 #[test]
 fn a_room_reports_each_vertical_wall_and_a_mirror_wall_takes_nothing() {
     let mut study = RoomStudy { diameters: vec![0.03e-6], count: 1200, target_error: None, ..RoomStudy::default() };
