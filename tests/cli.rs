@@ -395,6 +395,25 @@ fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     let on_walls = ten["deposited"]["walls"].as_u64().unwrap();
     let side: u64 = ["x0", "x1", "y0", "y1"].iter().map(|w| mapped(w)).sum();
     assert_eq!(side, on_walls, "the four side maps hold every wall deposit");
+    // The JSON's maps are the CSV files': surface by surface, the same cells and axes.
+    let maps = ten["maps"].as_array().unwrap();
+    assert_eq!(maps.len(), 6);
+    for m in maps {
+        let name = m["surface"].as_str().unwrap();
+        let sum: u64 = m["cells"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|r| r.as_array().unwrap())
+            .map(|c| c.as_u64().unwrap())
+            .sum();
+        assert_eq!(sum, mapped(name), "{name}");
+        assert_eq!(m["cells"].as_array().unwrap().len(), 20);
+    }
+    assert_eq!(maps[0]["surface"], "floor");
+    assert_eq!(maps[0]["rows"], serde_json::json!(["x", 0.0, 1.0]));
+    assert_eq!(maps[2]["normal"], serde_json::json!(["x", 0.0]));
+    assert_eq!(maps[2]["columns"], serde_json::json!(["z", 0.0, 1.0]));
     // Each wall apart: its deposits as its map has them, its events adding up to the walls'.
     let each = ten["each_wall"].as_array().unwrap();
     assert_eq!(each.iter().map(|w| w["wall"].as_str().unwrap()).collect::<Vec<_>>(), ["x0", "x1", "y0", "y1"]);

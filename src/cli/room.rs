@@ -12,7 +12,7 @@ use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::geometry::in_plane_axes;
 use depo::tracker::studies::{self, MAP_BINS};
 use depo::tracker::studies::{RoomPoint, RoomStudy};
-use depo::tracker::{binomial_error, DecayCurve, Estimate, Flow, Geometry, WallTally};
+use depo::tracker::{binomial_error, DecayCurve, Estimate, Flow, Geometry, Scene, WallTally};
 use serde::Serialize;
 
 use super::plot::{self, Series};
@@ -235,8 +235,65 @@ struct Row {
     /// Per furnishing: deposition velocities onto its faces and what it collected.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     furnishings: Vec<FurnishingRow>,
+    /// Each surface's deposition map: the tracked particles' deposits over the run, per cell.
+    maps: Vec<SurfaceMap>,
+}
+
+/// One surface's deposition map for one size, as the JSON, the CSV files and the figure give
+/// it: the deposits of the tracked particles over the whole run on a [`MAP_BINS`] grid over
+/// the surface's two in-plane axes in the order x, y, z (over the room, or the furnishing).
+#[derive(Serialize)]
+struct SurfaceMap {
+    /// Its name: floor, ceiling, x0, ..., or a furnishing's face as `table.top`.
+    surface: String,
+    /// "wall" or "furnishing face".
+    kind: &'static str,
+    /// The axis the surface is normal to, and its position along it, m.
+    normal: (&'static str, f64),
+    /// The rows' axis and its range, m.
+    rows: (&'static str, f64, f64),
+    /// The columns' axis and its range, m.
+    columns: (&'static str, f64, f64),
+    /// Deposits per cell, row by row.
     #[serde(skip)]
-    maps: Vec<Vec<u32>>,
+    cells: Vec<Vec<u32>>,
+    /// The same rows as compact JSON arrays, one line each in the pretty-printed report
+    /// (element by element they would take a line per cell).
+    #[serde(rename = "cells")]
+    rows_json: Vec<Box<serde_json::value::RawValue>>,
+}
+
+/// The maps `p` holds, one per surface of `scene` in id order, with their axes.
+fn surface_maps(scene: &Scene, p: &RoomPoint) -> Vec<SurfaceMap> {
+    let axis = ["x", "y", "z"];
+    let size = scene.geometry.size();
+    scene
+        .surfaces()
+        .iter()
+        .zip(&p.maps)
+        .map(|(wall, map)| {
+            let (low, high) = match wall.furnishing {
+                Some(k) => (scene.furnishings[k].low, scene.furnishings[k].high),
+                None => ([0.0; 3], size),
+            };
+            let [a, b] = in_plane_axes(wall.axis);
+            SurfaceMap {
+                surface: scene.surface_name(wall.id),
+                kind: if wall.furnishing.is_some() { "furnishing face" } else { "wall" },
+                normal: (axis[wall.axis], wall.position),
+                rows: (axis[a], low[a], high[a]),
+                columns: (axis[b], low[b], high[b]),
+                cells: map.chunks(MAP_BINS[1]).map(<[u32]>::to_vec).collect(),
+                rows_json: map
+                    .chunks(MAP_BINS[1])
+                    .map(|row| {
+                        let text = serde_json::to_string(row).expect("integers serialise");
+                        serde_json::value::RawValue::from_string(text).expect("valid JSON")
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
 }
 
 /// One furnishing in a size's row.
@@ -407,7 +464,8 @@ struct Report<'a> {
 }
 
 /// A size's row; `size` the room's, m; `density` its particles', kg/m^3.
-fn row(p: &RoomPoint, size: [f64; 3], density: f64, filtration: &Filtration) -> Row {
+fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtration) -> Row {
+    let size = scene.geometry.size();
     let per_hour = |e: Estimate| Measured::from(e).scaled(3600.0);
     let (floor, ceiling, walls) = (Measured::from(p.floor), Measured::from(p.ceiling), Measured::from(p.walls));
     let unresolved =
@@ -517,7 +575,7 @@ fn row(p: &RoomPoint, size: [f64; 3], density: f64, filtration: &Filtration) -> 
                 deposited: Share::of(f.deposited, (p.balance.injected, p.balance.injected_mass), Some(f.area)),
             })
             .collect(),
-        maps: p.maps.clone(),
+        maps: surface_maps(scene, p),
     }
 }
 
@@ -556,7 +614,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
     };
     // Each run's density: the bins' with a size distribution (in the points' order).
     let density = |i: usize| distribution.as_ref().map_or(study.density, |d| d.bins[i].density);
-    let rows: Vec<Row> = points.iter().enumerate().map(|(i, p)| row(p, size, density(i), &study.filtration)).collect();
+    let rows: Vec<Row> =
+        points.iter().enumerate().map(|(i, p)| row(p, &study.scene, density(i), &study.filtration)).collect();
     let ventilated = study.scene.exchange_rate() > 0.0;
     let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();
     match args.format {
@@ -1221,58 +1280,42 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
     let curves = dir.join("room-decay.csv");
     std::fs::write(&curves, text).map_err(|e| format!("cannot write {}: {e}", curves.display()))?;
     // Deposition maps, one CSV per surface (walls, then furnishing faces, named as
-    // `table.top`) and size, under a header of `#` lines: rows and columns along the
-    // surface's two in-plane axes in the order x, y, z, over the room or the furnishing.
-    let surfaces = study.scene.surfaces();
-    let axis = ["x", "y", "z"];
+    // `table.top`) and size, under a header of `#` lines, and a figure per size.
     for r in rows {
         let label = (r.diameter_um * 1e4).round() / 1e4;
         let mut panels = Vec::new();
-        for (wall, map) in surfaces.iter().zip(&r.maps) {
-            let name = study.scene.surface_name(wall.id);
-            let (low, high) = match wall.furnishing {
-                Some(k) => (study.scene.furnishings[k].low, study.scene.furnishings[k].high),
-                None => ([0.0; 3], size),
-            };
-            let [a, b] = in_plane_axes(wall.axis);
-            let cell = [(high[a] - low[a]) / MAP_BINS[0] as f64, (high[b] - low[b]) / MAP_BINS[1] as f64];
+        for m in &r.maps {
+            let ((ra, r0, r1), (ca, c0, c1)) = (m.rows, m.columns);
+            let (n, k) = (m.cells.len(), m.cells.first().map_or(0, Vec::len));
             let mut text = format!(
-                "# depo room deposition map: {} {name} ({} = {} m), particle diameter {label} um, density {} kg/m^3; \
+                "# depo room deposition map: {} {} ({} = {} m), particle diameter {label} um, density {} kg/m^3; \
                  deposits of the tracked particles over the whole run, per cell\n\
-                 # rows: {} from {} to {} m in {} cells; columns: {} from {} to {} m in {} cells\n\
-                 # cell size {} m ({}) x {} m ({})\n",
-                if wall.furnishing.is_some() { "furnishing face" } else { "wall" },
-                axis[wall.axis],
-                wall.position,
+                 # rows: {ra} from {r0} to {r1} m in {n} cells; columns: {ca} from {c0} to {c1} m in {k} cells\n\
+                 # cell size {} m ({ra}) x {} m ({ca})\n",
+                m.kind,
+                m.surface,
+                m.normal.0,
+                m.normal.1,
                 r.density,
-                axis[a],
-                low[a],
-                high[a],
-                MAP_BINS[0],
-                axis[b],
-                low[b],
-                high[b],
-                MAP_BINS[1],
-                cell[0],
-                axis[a],
-                cell[1],
-                axis[b],
+                (r1 - r0) / n as f64,
+                (c1 - c0) / k as f64,
             );
-            for row in map.chunks(MAP_BINS[1]) {
+            for row in &m.cells {
                 let cells: Vec<String> = row.iter().map(u32::to_string).collect();
                 text.push_str(&cells.join(","));
                 text.push('\n');
             }
             // Bins of two densities can share a diameter: the density tells their files apart.
+            let name = &m.surface;
             let path =
                 dir.join(format!("room-map-{name}-{label}um{}.csv", density_label(rows, r.density, "-", "kgm3")));
             std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
             // The figure shows the room's six surfaces and each furnishing's top, the second
             // in-plane axis up (z on a wall, y on the floor and ceiling).
-            if wall.furnishing.is_none() || name.ends_with(".top") {
-                let cells = (0..MAP_BINS[1]).map(|j| (0..MAP_BINS[0]).map(|i| map[i * MAP_BINS[1] + j]).collect());
-                let axes = [(axis[b], low[b], high[b]), (axis[a], low[a], high[a])];
-                panels.push(plot::MapPanel { name: name.to_string(), cells: cells.collect(), axes });
+            if m.kind == "wall" || name.ends_with(".top") {
+                let cells = (0..k).map(|j| (0..n).map(|i| m.cells[i][j]).collect());
+                let axes = [m.columns, m.rows];
+                panels.push(plot::MapPanel { name: name.clone(), cells: cells.collect(), axes });
             }
         }
         let figure = dir.join(format!("room-map-{label}um{}.svg", density_label(rows, r.density, "-", "kgm3")));
