@@ -911,6 +911,10 @@ fn room_with_openings() {
     .unwrap();
     let json = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"]);
     assert!((json["air_changes_per_hour"].as_f64().unwrap() - 2.0).abs() < 1e-12, "{}", json["air_changes_per_hour"]);
+    // The table: the rate to a thousandth, and each wall apart (the flow reaches them unevenly).
+    let table = ok_text(&["room", scene.to_str().unwrap(), "--no-plot"]);
+    assert!(table.contains("Ventilated: 2 air changes per hour,"), "{table}");
+    assert!(table.contains("Each vertical wall"), "{table}");
     let release = &json["sizes"][0]["release"];
     let count = |k: &str| release[k]["count"].as_u64().unwrap();
     assert!(count("exhausted") > 0, "{release}");

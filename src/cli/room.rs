@@ -798,7 +798,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             if ventilated {
                 out!(
                     "Ventilated: {} air changes per hour, penetration {}; C_in/C_out = P a / (a + beta) at steady state.",
-                    study.scene.exchange_rate() * 3600.0,
+                    // To a thousandth: with openings the rate is a flow over a volume.
+                    format!("{:.3}", study.scene.exchange_rate() * 3600.0).trim_end_matches('0').trim_end_matches('.'),
                     study.penetration
                 );
             }
