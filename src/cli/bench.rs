@@ -180,8 +180,10 @@ struct IntegratorRow {
 fn integrators(args: &BenchArgs) -> Result<(), Error> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build().map_err(|e| e.to_string())?;
     let ratios = [0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0];
-    let rows: Vec<IntegratorRow> = pool
-        .install(|| integrator_convergence(&ratios, 2000))
+    let progress = progress_bar(2 * ratios.len(), "runs")?;
+    let runs = pool.install(|| integrator_convergence(&ratios, 2000, |done| progress.set_position(done as u64)));
+    progress.finish_and_clear();
+    let rows: Vec<IntegratorRow> = runs
         .into_iter()
         .map(|r| IntegratorRow {
             scheme: match r.scheme {

@@ -65,9 +65,14 @@ pub fn relaxation_time() -> f64 {
     Aerodynamics::new(DIAMETER, DENSITY, &Air::standard(), STANDARD_GRAVITY).relaxation_time
 }
 
-/// Runs both schemes at each `dt / tau` (ascending) with `count` particles.
+/// Runs both schemes at each `dt / tau` (ascending) with `count` particles; `progress` is
+/// told the runs done after each (of twice the step sizes).
 #[must_use]
-pub fn integrator_convergence(dt_over_tau: &[f64], count: usize) -> Vec<ConvergenceRow> {
+pub fn integrator_convergence(
+    dt_over_tau: &[f64],
+    count: usize,
+    mut progress: impl FnMut(usize),
+) -> Vec<ConvergenceRow> {
     let tau = relaxation_time();
     let injection = injection(count);
     let reference = run(&scene(whole_steps(tau / 1000.0), Scheme::Exponential), &injection).expect("valid scene");
@@ -96,6 +101,7 @@ pub fn integrator_convergence(dt_over_tau: &[f64], count: usize) -> Vec<Converge
                 error,
                 order,
             });
+            progress(rows.len());
         }
     }
     rows
@@ -121,7 +127,9 @@ mod tests {
 
     #[test]
     fn exponential_converges_at_first_order_and_stays_stable_where_euler_fails() {
-        let rows = integrator_convergence(&[0.03, 0.1, 0.3, 1.0, 3.0], 20);
+        let mut told = Vec::new();
+        let rows = integrator_convergence(&[0.03, 0.1, 0.3, 1.0, 3.0], 20, |done| told.push(done));
+        assert_eq!(told, (1..=10).collect::<Vec<_>>(), "one call per run");
         let exp: Vec<_> = rows.iter().filter(|r| r.scheme == Scheme::Exponential).collect();
         let euler: Vec<_> = rows.iter().filter(|r| r.scheme == Scheme::Euler).collect();
         for r in &exp[1..3] {
