@@ -113,6 +113,29 @@ fn every_offered_surface_is_a_key_the_scene_reader_takes() {
     );
     let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"]);
     assert_eq!(report["sizes"][0]["furnishings"][0]["name"], "table", "{report}");
+    // An entry lands on the surface it names: with the law on the floor and the table's top
+    // only (sinks elsewhere), those two alone show the law's adhesion losses in their tallies.
+    let scene = small_room(
+        &dir,
+        &format!(
+            "[walls]\n{}[[furnishings]]\nname = \"table\"\nlow = [0.3, 0.3, 0.4]\nhigh = [0.7, 0.7, 0.45]\n{}",
+            entries(&["floor"]),
+            entries(&["top"])
+        ),
+    );
+    let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    let tallies = report["sizes"][0]["surface_tallies"].as_array().unwrap();
+    for t in tallies {
+        let (name, adhesion) = (t["surface"].as_str().unwrap(), t["energy_lost_adhesion"].as_f64().unwrap());
+        let contacts = t["contacts"].as_u64().unwrap();
+        if name == "floor" || name == "table.top" {
+            assert!(contacts > 0 && adhesion > 0.0, "{t}");
+        } else {
+            assert_eq!(adhesion, 0.0, "{t}");
+            assert_eq!(t["captures"], t["contacts"], "a sink captures at every contact: {t}");
+        }
+    }
+    assert_eq!(tallies.len(), 12, "the room's six surfaces and the table's six faces");
 
     let channel = dir.join("channel.toml");
     std::fs::write(

@@ -168,6 +168,14 @@ impl From<WallTally> for Tally {
     }
 }
 
+/// One surface's wall-law tally, named.
+#[derive(Serialize)]
+struct SurfaceTally {
+    surface: String,
+    #[serde(flatten)]
+    tally: Tally,
+}
+
 /// The excursions per crossing of each class of surface, as multiples of the study's three
 /// ([`depo::tracker::Excursions::class_sampling`]).
 #[derive(Serialize)]
@@ -221,6 +229,8 @@ struct Row {
     #[serde(skip_serializing_if = "Option::is_none")]
     class_sampling: Option<ClassSampling>,
     wall_tally: Tally,
+    /// Each surface's own tally, in id order: what each surface's material did.
+    surface_tallies: Vec<SurfaceTally>,
     deposited: Deposited,
     /// Where the released particles are at the end: per surface, exhausted, airborne.
     release: Release,
@@ -514,6 +524,12 @@ fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtration) -> R
             furnishings,
         }),
         wall_tally: p.tally.into(),
+        surface_tallies: scene
+            .surfaces()
+            .iter()
+            .zip(&p.tallies)
+            .map(|(w, t)| SurfaceTally { surface: scene.surface_name(w.id), tally: (*t).into() })
+            .collect(),
         release: {
             let floor = size[0] * size[1];
             let walls = 2.0 * (size[0] + size[1]) * size[2];

@@ -304,6 +304,9 @@ pub struct RoomPoint {
     pub filter_removal: f64,
     /// The wall-law tallies summed over all surfaces.
     pub tally: WallTally,
+    /// Each surface's own tally (contacts, rebounds, captures, resting, energy by
+    /// mechanism), in id order as [`RoomPoint::maps`]: what each material did.
+    pub tallies: Vec<WallTally>,
     /// Deposition maps, one per surface in id order (floor, ceiling, x0, x1, y0, y1, then the
     /// furnishings' faces), each on a [`MAP_BINS`] grid over the surface's two in-plane axes in
     /// the order x, y, z (rows, columns): the floor's over x and y, the `x0`/`x1` walls' over
@@ -549,6 +552,7 @@ impl RoomStudy {
                 class_sampling: scene.excursions.as_ref().map(|e| e.class_sampling),
                 calibration_seconds,
                 tally: total(&result.tallies),
+                tallies: result.tallies.clone(),
                 maps: result
                     .walls
                     .iter()
