@@ -265,12 +265,20 @@ struct SurfaceMap {
     /// The columns' axis and its range, m.
     columns: (&'static str, f64, f64),
     /// Deposits per cell, row by row.
-    #[serde(skip)]
+    #[serde(serialize_with = "rows_on_one_line")]
     cells: Vec<Vec<u32>>,
-    /// The same rows as compact JSON arrays, one line each in the pretty-printed report
-    /// (element by element they would take a line per cell).
-    #[serde(rename = "cells")]
-    rows_json: Vec<Box<serde_json::value::RawValue>>,
+}
+
+/// Serialises `cells` with each row as one compact JSON array, so that the pretty-printed
+/// report gives a row a line rather than every cell a line of its own.
+fn rows_on_one_line<S: serde::Serializer>(cells: &[Vec<u32>], s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::{Error as _, SerializeSeq};
+    let mut seq = s.serialize_seq(Some(cells.len()))?;
+    for row in cells {
+        let text = serde_json::to_string(row).map_err(S::Error::custom)?;
+        seq.serialize_element(&serde_json::value::RawValue::from_string(text).map_err(S::Error::custom)?)?;
+    }
+    seq.end()
 }
 
 /// The maps `p` holds, one per surface of `scene` in id order, with their axes.
@@ -294,13 +302,6 @@ fn surface_maps(scene: &Scene, p: &RoomPoint) -> Vec<SurfaceMap> {
                 rows: (axis[a], low[a], high[a]),
                 columns: (axis[b], low[b], high[b]),
                 cells: map.chunks(MAP_BINS[1]).map(<[u32]>::to_vec).collect(),
-                rows_json: map
-                    .chunks(MAP_BINS[1])
-                    .map(|row| {
-                        let text = serde_json::to_string(row).expect("integers serialise");
-                        serde_json::value::RawValue::from_string(text).expect("valid JSON")
-                    })
-                    .collect(),
             }
         })
         .collect()
@@ -473,7 +474,8 @@ struct Report<'a> {
     distribution: Option<&'a DistributionReport>,
 }
 
-/// A size's row; `size` the room's, m; `density` its particles', kg/m^3.
+/// A size's row of `scene`'s study; `density` its particles', kg/m^3; `filtration` the
+/// study's filters.
 fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtration) -> Row {
     let size = scene.geometry.size();
     let per_hour = |e: Estimate| Measured::from(e).scaled(3600.0);

@@ -271,10 +271,7 @@ impl SceneSource {
     /// first of `keys` (dotted, as [`line_of_key`] takes them) the file gives; `FILE: message`
     /// where it gives none of them (their values are the defaults).
     fn at(&self, keys: &[&str], message: impl std::fmt::Display) -> Error {
-        let line = toml::de::DeTable::parse(&self.text)
-            .ok()
-            .and_then(|root| keys.iter().find_map(|key| line_of_key(&self.text, root.get_ref(), key)));
-        match line {
+        match keys.iter().find_map(|key| self.line(key)) {
             Some(line) => format!("{} line {line}: {message}", self.name),
             None => format!("{}: {message}", self.name),
         }
@@ -282,11 +279,16 @@ impl SceneSource {
 
     /// `keys` ordered by the line the file gives each on, the keys it leaves out last.
     fn in_file_order<'k>(&self, keys: &[&'k str]) -> Vec<&'k str> {
-        let root = toml::de::DeTable::parse(&self.text).ok();
-        let line = |key: &str| root.as_ref().and_then(|r| line_of_key(&self.text, r.get_ref(), key));
         let mut keys = keys.to_vec();
-        keys.sort_by_key(|k| line(k).unwrap_or(usize::MAX));
+        keys.sort_by_key(|k| self.line(k).unwrap_or(usize::MAX));
         keys
+    }
+
+    /// The line of the dotted `key` in the file ([`line_of_key`]); `None` where the file
+    /// leaves it out, or for a built-in scene. The text is parsed anew: errors only ask.
+    fn line(&self, key: &str) -> Option<usize> {
+        let root = toml::de::DeTable::parse(&self.text).ok()?;
+        line_of_key(&self.text, root.get_ref(), key)
     }
 
     /// `message` at the line of the byte `offset` into the file (a span of its values).
