@@ -45,9 +45,12 @@ struct Row {
     particle_steps: u64,
     /// Particles run at this `tau+`.
     particles: usize,
-    /// "excursions", "excursions+sweeps" (strong sweeps caught before the layer too) or
-    /// "plain".
+    /// "excursions", "excursions+sweeps" (strong sweeps caught before the layer too),
+    /// "plain", or "wall-function" (deposition from the layer's correlation).
     method: &'static str,
+    /// With a wall function: the concentration in its layers over the mean, `C_w / C` (`V+`
+    /// is proportional to it; 1 where the layers hold the bulk concentration).
+    layer_concentration: Option<Measured>,
     /// With excursions: the share of their weight given up at their longest duration.
     excursions_truncated: Option<f64>,
     /// Beside a target error: no deposit event, or a relative standard error above the target
@@ -103,11 +106,13 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             band_factor: (p.v_plus.events > 0).then(|| band_factor(p.v_plus.value, p.wood, p.papavergos_hedley)),
             particle_steps: p.particle_steps,
             particles: p.particles,
-            method: match (p.excursions, p.sweeps) {
-                (Some(_), true) => "excursions+sweeps",
-                (Some(_), false) => "excursions",
-                (None, _) => "plain",
+            method: match (p.excursions, p.sweeps, p.layer_concentration) {
+                (Some(_), true, _) => "excursions+sweeps",
+                (Some(_), false, _) => "excursions",
+                (None, _, Some(_)) => "wall-function",
+                (None, _, None) => "plain",
             },
+            layer_concentration: p.layer_concentration.map(Into::into),
             excursions_truncated: p.excursions,
             unresolved: study.target_error.is_some_and(|t| p.v_plus.events == 0 || p.v_plus.error > t * p.v_plus.value),
             wall_tally: p.tally.into(),
@@ -188,8 +193,9 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 "particles"
             );
             for r in &rows {
-                let method = match r.excursions_truncated {
-                    Some(t) if t > 1e-3 => format!("{} ({:.1} %)", r.method, 100.0 * t),
+                let method = match (r.excursions_truncated, &r.layer_concentration) {
+                    (Some(t), _) if t > 1e-3 => format!("{} ({:.1} %)", r.method, 100.0 * t),
+                    (_, Some(c)) => format!("{} (C_w/C {:.2} +- {:.2})", r.method, c.value, c.error),
                     _ => r.method.to_string(),
                 };
                 let ratio =

@@ -11,7 +11,8 @@ use depo::tracker::furnishing::FACE_NAMES;
 use depo::tracker::openings;
 use depo::tracker::studies::{ChannelStudy, RoomStudy};
 use depo::tracker::{
-    Air, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, SceneError, Scheme, WallBehaviour,
+    Air, Correlation, Drag, Flow, Furnishing, Geometry, NearWall, Opening, OpeningKind, Scene, SceneError, Scheme,
+    WallBehaviour, WallFunction,
 };
 use depo::wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
@@ -75,8 +76,12 @@ struct RunFile {
     transient: Option<f64>,
     /// "stokes" or "schiller-naumann".
     drag: Option<String>,
-    /// "gaussian" or "intermittent" (channels).
+    /// "gaussian", "intermittent" (channels) or "wall-function".
     near_wall: Option<String>,
+    /// The wall function's correlation: "wood", "papavergos-hedley" or "lai-nazaroff".
+    correlation: Option<String>,
+    /// The wall function's layer in wall units.
+    layer_plus: Option<f64>,
     /// "exponential" or "midpoint".
     scheme: Option<String>,
     excursions: Option<bool>,
@@ -308,7 +313,8 @@ impl SceneSource {
             "average_from" => &["run.transient"],
             "gravity" => &["run.gravity"],
             "lift" => &["run.lift"],
-            "near_wall" => &["run.near_wall"],
+            "near_wall" | "wall_function" => &["run.near_wall"],
+            "wall_function.layer_plus" => &["run.layer_plus"],
             "air_exchange" => &["ventilation.air_changes_per_hour"],
             "penetration" => &["ventilation.penetration"],
             "supply_share" => &["ventilation.supply_share"],
@@ -386,8 +392,35 @@ fn apply_run_choices(src: &SceneSource, scene: &mut Scene, run: &RunFile) -> Res
     set(&mut scene.drag, named(src, "run.drag", run.drag.as_deref(), &drag)?);
     let schemes = [("exponential", Scheme::Exponential), ("midpoint", Scheme::Midpoint)];
     set(&mut scene.scheme, named(src, "run.scheme", run.scheme.as_deref(), &schemes)?);
-    let models = [("gaussian", NearWall::Gaussian), ("intermittent", NearWall::Intermittent)];
-    set(&mut scene.near_wall, named(src, "run.near_wall", run.near_wall.as_deref(), &models)?);
+    let models = [
+        ("gaussian", Some(NearWall::Gaussian)),
+        ("intermittent", Some(NearWall::Intermittent)),
+        ("wall-function", None),
+    ];
+    match named(src, "run.near_wall", run.near_wall.as_deref(), &models)? {
+        Some(Some(model)) => scene.near_wall = model,
+        // The wall function's transport is the Gaussian model's.
+        Some(None) => {
+            scene.near_wall = NearWall::Gaussian;
+            let correlation = if matches!(scene.geometry, Geometry::Channel { .. }) {
+                Correlation::Wood
+            } else {
+                Correlation::LaiNazaroff
+            };
+            scene.wall_function = Some(WallFunction::new(correlation));
+        }
+        None => {}
+    }
+    let correlation = named(src, "run.correlation", run.correlation.as_deref(), &Correlation::NAMED)?;
+    if let Some(wf) = &mut scene.wall_function {
+        set(&mut wf.correlation, correlation);
+        set(&mut wf.layer_plus, run.layer_plus);
+    } else if let Some(key) = [(correlation.is_some(), "run.correlation"), (run.layer_plus.is_some(), "run.layer_plus")]
+        .into_iter()
+        .find_map(|(given, key)| given.then_some(key))
+    {
+        return Err(src.at(&[key], format!("`{key}` is for a wall function: set `run.near_wall = \"wall-function\"`")));
+    }
     Ok(())
 }
 

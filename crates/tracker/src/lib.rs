@@ -41,6 +41,9 @@
 //! - [`distribution`]: size distributions (lognormal modes by number or mass, measured size
 //!   classes) through a room study: the mass deposited per surface, exhausted and airborne,
 //!   for all of it and for PM2.5 and PM10.
+//! - [`wall_function`]: deposition where the near-wall layer is not resolved: a particle in
+//!   a layer over the wall deposits with the probability a correlation's deposition velocity
+//!   gives (for the tracker's rooms and channels, and for host solvers through the C ABI).
 //! - [`correlations`]: what to compare with: Lai & Nazaroff (2000) for rooms, Wood (1981) and
 //!   Papavergos & Hedley (1984) for channels.
 //! - [`measurements`]: measured deposition beside them: Sippola & Nazaroff's (2004) duct
@@ -81,6 +84,7 @@ pub mod run;
 pub mod scene;
 pub mod studies;
 mod track;
+pub mod wall_function;
 
 pub use air::{Aerodynamics, Air};
 pub use decay::{log_linear_fit, Comparison, DecayCurve, DecayFit, LogLinear};
@@ -92,3 +96,4 @@ pub use openings::{Opening, OpeningKind};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Estimate, Run};
 pub use scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 pub use track::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};
+pub use wall_function::{Correlation, WallFunction};

@@ -23,7 +23,7 @@ use rayon::prelude::*;
 
 use crate::geometry::{in_plane_axes, Orientation, Wall};
 use crate::scene::{Injection, Scene, SceneError, Scheme};
-use crate::track::{track, track_excursions, Fate, ParticleTally, Prepared, Record, WallTally};
+use crate::track::{track, track_excursions, track_wall_function, Fate, ParticleTally, Prepared, Record, WallTally};
 
 /// Particles per chunk of work: fixed, so the sums do not depend on the thread count, and
 /// small, so that a run's last chunks end together on every thread (a study runs a size in
@@ -127,6 +127,7 @@ fn track_range(
             let ids = (c * CHUNK).max(first)..((c + 1) * CHUNK).min(ids.end);
             let (records, particles) = match &scene.excursions {
                 Some(excursions) => track_excursions(prepared, excursions, ids, &mut tally),
+                None if prepared.wall_function.is_some() => track_wall_function(prepared, ids, &mut tally),
                 None => {
                     let records = track(prepared, ids, &mut tally);
                     let particles = records.iter().map(|r| ParticleTally::of(r, window)).collect();
@@ -323,6 +324,17 @@ impl Run {
             self.particles.iter().map(|p| (walls.iter().map(|&w| p.deposited_on(w)).sum::<f64>(), p.exposure));
         let scale = if area > 0.0 { self.volume / area } else { 0.0 };
         Estimate::ratio(samples, scale, events, self.smallest_weight)
+    }
+
+    /// With a wall function ([`crate::wall_function`]): the mean airborne concentration within
+    /// the walls' layers, of `layer_volume` (m^3) in all, over the mean concentration in the
+    /// whole volume, over the averaging window, with its standard error: 1 where the layers
+    /// hold the concentration the correlation is defined against.
+    #[must_use]
+    pub fn layer_concentration(&self, layer_volume: f64) -> Estimate {
+        let samples = self.particles.iter().map(|p| (p.layer_exposure, p.exposure));
+        let events = self.particles.iter().filter(|p| p.layer_exposure > 0.0).count();
+        Estimate::ratio(samples, self.volume / layer_volume, events, self.dt)
     }
 
     /// With [`Excursions`](crate::Excursions): the weight of excursion branches given up at

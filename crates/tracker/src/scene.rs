@@ -11,6 +11,7 @@ use crate::flow::Flow;
 use crate::furnishing::{free_volume, Furnishing, FACE_NAMES, ROOM_SURFACES};
 use crate::geometry::{Geometry, Wall};
 use crate::openings::{self, Opening};
+use crate::wall_function::WallFunction;
 
 /// What a wall does with a particle that touches it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -151,6 +152,11 @@ pub struct Scene {
     pub lift: bool,
     /// The near-wall statistics of a channel's wall-normal velocity.
     pub near_wall: NearWall,
+    /// A deposition wall function on the domain's walls (see [`crate::wall_function`]): a
+    /// particle within its layer deposits with the probability its correlation gives, and
+    /// the walls themselves reflect; `None` (the default) resolves deposition at the walls.
+    /// Furnishings' faces and mirror walls keep their own behaviour.
+    pub wall_function: Option<WallFunction>,
     /// One behaviour per wall, in the order of [`Geometry::walls`].
     pub walls: Vec<WallBehaviour>,
     /// The integrator.
@@ -202,6 +208,7 @@ impl Scene {
             drag: Drag::Stokes,
             lift: false,
             near_wall: NearWall::Gaussian,
+            wall_function: None,
             walls,
             scheme: Scheme::Exponential,
             dt,
@@ -372,6 +379,9 @@ impl Scene {
         if self.near_wall == NearWall::Intermittent && !matches!(self.flow, Flow::TurbulentChannel { .. }) {
             return Err(SceneError::new("near_wall", 1.0, "\"intermittent\" needs a turbulent channel flow"));
         }
+        if let Some(wf) = &self.wall_function {
+            self.validate_wall_function(wf)?;
+        }
         if injection.count == 0 {
             return Err(SceneError::new("particles.count", 0.0, "must be at least 1"));
         }
@@ -415,6 +425,40 @@ impl Scene {
         }
         self.validate_furnishings(injection, largest)?;
         openings::validate_clearance(&self.openings, &self.furnishings, size)
+    }
+
+    /// The wall function's part of [`Scene::validate`].
+    fn validate_wall_function(&self, wf: &WallFunction) -> Result<(), SceneError> {
+        let Some(u_star) = self.flow.friction_velocity() else {
+            return Err(SceneError::new(
+                "wall_function",
+                1.0,
+                "needs a turbulent flow (its friction velocity sets the layer and the correlation)",
+            ));
+        };
+        positive("wall_function.layer_plus", wf.layer_plus)?;
+        let layer = wf.layer(&self.air, u_star);
+        let size = self.geometry.size();
+        let walled = self.geometry.walled();
+        let narrowest = (0..3).filter(|&a| walled[a]).map(|a| size[a]).fold(f64::INFINITY, f64::min);
+        if layer.is_nan() || layer >= 0.25 * narrowest {
+            return Err(SceneError::new(
+                "wall_function.layer_plus",
+                wf.layer_plus,
+                "must make the layer thinner than a quarter of the domain across its walls",
+            ));
+        }
+        if self.excursions.is_some() {
+            return Err(SceneError::new(
+                "wall_function",
+                1.0,
+                "counts deposits itself: near-wall excursions must be off",
+            ));
+        }
+        if self.near_wall == NearWall::Intermittent {
+            return Err(SceneError::new("near_wall", 1.0, "must be \"gaussian\" with a wall function"));
+        }
+        Ok(())
     }
 
     /// The furnishings' part of [`Scene::validate`]; `largest` is the largest diameter

@@ -492,7 +492,8 @@ impl RoomStudy {
             let mut longest = ROOM_LONGEST_EXCURSION;
             let mut calibration_seconds = 0.0;
             let (scene, result) = loop {
-                let (mut scene, duration) = if self.excursions {
+                // A wall function counts expected deposits itself: no excursions.
+                let (mut scene, duration) = if self.excursions && self.scene.wall_function.is_none() {
                     let pilot = (self.count / PILOT.0).max(1);
                     let (scene, duration, seconds) =
                         with_excursions(plain.clone(), &injection, pilot, 0.05, (longest, most), 16, None, 1)
@@ -698,6 +699,10 @@ pub struct ChannelPoint {
     pub sweeps: bool,
     /// The wall-law tallies summed over both walls.
     pub tally: WallTally,
+    /// With a wall function: the concentration in its layers over the mean, `C_w / C`, which
+    /// the deposition velocity is proportional to (1 where the layers hold the bulk
+    /// concentration the correlation is defined against; [`crate::wall_function`]).
+    pub layer_concentration: Option<Estimate>,
 }
 
 impl ChannelStudy {
@@ -710,12 +715,14 @@ impl ChannelStudy {
             let d = diameter_for_tau_plus(tp, self.density, air, u_star).ok_or_else(|| {
                 SceneError::new("particles.tau_plus", tp, "needs a particle diameter outside 0.1 nm to 1 cm here")
             })?;
-            let count = if tp < self.excursions_below { self.excursion_count } else { self.count };
+            // A wall function counts expected deposits itself: no excursions.
+            let excursions = tp < self.excursions_below && self.scene.wall_function.is_none();
+            let count = if excursions { self.excursion_count } else { self.count };
             let injection = Injection::new(count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let mut scene = self.scene.clone();
             scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
             let mut calibration_seconds = 0.0;
-            if tp < self.excursions_below {
+            if excursions {
                 // Factors up to 4 (larger ones made the deep branches, which live long in
                 // the Brownian sublayer, too many: 3-5 times the run time for the same error).
                 let pilot = (count / PILOT.0).max(1);
@@ -747,6 +754,10 @@ impl ChannelStudy {
             }
             let v = all_walls(&result);
             let sc = schmidt(d, air);
+            let layer_concentration = scene.wall_function.map(|wf| {
+                let layer = wf.layer(air, u_star);
+                result.layer_concentration(result.walls.iter().map(|w| w.area * layer).sum())
+            });
             points.push(ChannelPoint {
                 tau_plus: tp,
                 diameter: d,
@@ -765,6 +776,7 @@ impl ChannelStudy {
                 calibration_seconds,
                 sweeps: scene.excursions.as_ref().is_some_and(|e| e.sweeps.is_some()),
                 tally: total(&result.tallies),
+                layer_concentration,
             });
             progress(i + 1);
         }

@@ -80,11 +80,13 @@ use crate::intermittency::Intermittent;
 use crate::noise::{particle_rng, Normals};
 use crate::openings::{FlowCell, Opening, OpeningKind, PotentialFlow, CELLS_ALONG_LONGEST};
 use crate::scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
+use crate::wall_function::Correlation;
 
 mod contacts;
 mod excursions;
 mod fluid;
 mod lanes;
+mod wall_function;
 
 pub use excursions::ParticleTally;
 
@@ -93,6 +95,7 @@ use fluid::{
     fluid_velocity, fluid_velocity_and_fluctuation, furnished_fluid_velocity, intermittent_fluid_velocity, saffman_lift,
 };
 use lanes::run_lanes;
+pub(crate) use wall_function::track_wall_function;
 
 /// Contacts allowed in one step before a bouncing particle counts as resting on the wall.
 pub const MAX_CONTACTS: usize = 32;
@@ -204,6 +207,20 @@ pub(crate) struct Prepared<'a> {
     ///
     /// [`Excursions::coarse_factor`]: crate::Excursions::coarse_factor
     pub coarse: Option<Box<Prepared<'a>>>,
+    /// The scene's wall function, prepared; `None` without one.
+    pub wall_function: Option<LayerWalls>,
+}
+
+/// A wall function prepared for a run ([`crate::wall_function`]).
+pub(crate) struct LayerWalls {
+    pub correlation: Correlation,
+    /// The layer's thickness, m.
+    pub layer: f64,
+    /// The flow's friction velocity, m/s.
+    pub friction_velocity: f64,
+    /// The walls it acts on (every domain wall but the mirrors), each with the behaviour
+    /// that decides what arrives there; in [`Prepared::behaviours`] they reflect.
+    pub walls: Vec<(Wall, WallBehaviour)>,
 }
 
 impl<'a> Prepared<'a> {
@@ -235,6 +252,28 @@ impl<'a> Prepared<'a> {
                 Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, dt, scene.drift_correction));
         }
         let midpoint = scene.scheme == Scheme::Midpoint && field.turbulence.is_some();
+        let mut behaviours = scene.surface_behaviours();
+        let wall_function = match (scene.wall_function, scene.flow.friction_velocity()) {
+            (Some(wf), Some(u_star)) => {
+                let walls: Vec<(Wall, WallBehaviour)> = scene
+                    .geometry
+                    .walls()
+                    .into_iter()
+                    .zip(scene.walls.iter().copied())
+                    .filter(|(_, b)| *b != WallBehaviour::Reflect)
+                    .collect();
+                for (wall, _) in &walls {
+                    behaviours[wall.id] = WallBehaviour::Reflect;
+                }
+                Some(LayerWalls {
+                    correlation: wf.correlation,
+                    layer: wf.layer(&scene.air, u_star),
+                    friction_velocity: u_star,
+                    walls,
+                })
+            }
+            _ => None,
+        };
         let reuse_scale =
             midpoint && field.profile.is_none() && field.stress_coupling.is_none() && field.intermittent.is_none();
         Ok(Self {
@@ -243,7 +282,7 @@ impl<'a> Prepared<'a> {
             field,
             walls: scene.geometry.walls(),
             surfaces: scene.surfaces(),
-            behaviours: scene.surface_behaviours(),
+            behaviours,
             boxes: &scene.furnishings,
             mean_flow: if scene.openings.is_empty() {
                 None
@@ -262,6 +301,7 @@ impl<'a> Prepared<'a> {
             reuse_scale,
             dt,
             coarse: None,
+            wall_function,
         })
     }
 }

@@ -52,6 +52,10 @@ pub struct ParticleTally {
     /// crossing whose excursion made them (first index) and of the surface they landed on
     /// (second index): what each class of crossing adds to each figure, and to its spread.
     pub class_deposits: [[f64; CROSSING_CLASSES]; CROSSING_CLASSES],
+    /// With a wall function ([`crate::wall_function`]): airborne time within the averaging
+    /// window spent in a wall's layer, s (0 otherwise): the layer's concentration over the
+    /// mean is this over `exposure`, over the layers' share of the volume.
+    pub layer_exposure: f64,
 }
 
 impl Default for ParticleTally {
@@ -67,6 +71,7 @@ impl Default for ParticleTally {
             branches: [0; MAX_LEVELS],
             class_steps: [0; CROSSING_CLASSES],
             class_deposits: [[0.0; CROSSING_CLASSES]; CROSSING_CLASSES],
+            layer_exposure: 0.0,
         }
     }
 }

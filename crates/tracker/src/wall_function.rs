@@ -1,0 +1,198 @@
+//! A deposition wall function: deposition where the near-wall layer is not resolved.
+//!
+//! A host CFD code meshed with wall functions (first cell at `y+` 30-50, as nearly all
+//! building and duct CFD is meshed) does not resolve the viscous sublayer through which
+//! particles reach a wall, and depo's own resolved near-wall model misses the
+//! diffusion-impaction regime (`tau+` 0.3-3, docs/validation.md). What engineering practice
+//! does there is what this module does: the transfer across the near-wall layer is taken from
+//! a validated correlation, the bulk transport from the simulation.
+//!
+//! ## The deposition probability
+//! A particle whose centre lies within `y_w` of a wall (the *layer*: a wall-function mesh's
+//! wall cell) deposits at a constant rate `k` while it is there. The layer then deposits a
+//! flux `J = k ∫_0^y_w C(y) dy = k y_w C_w`, with `C_w` the layer's mean concentration. A
+//! correlation gives `J = v_d C` against a reference concentration `C`: the bulk (mean)
+//! concentration of a channel for Wood (1981) and Papavergos & Hedley (1984), the well-mixed
+//! core's for Lai & Nazaroff (2000). So
+//!
+//! ```text
+//! k = v_d / y_w,     P(dt) = 1 - exp(-v_d dt / y_w)
+//! ```
+//!
+//! the second the chance that a particle in the layer throughout a step `dt` deposits within
+//! it (the Poisson process at rate `k`, exact for any `dt`; its first order `v_d dt / y_w`
+//! would exceed 1 for long steps). The flux is then `v_d C_w`: the correlation's wherever
+//! the layer's concentration is the reference one. The simulated bulk transport must keep it
+//! so: tracers are uniform up to a reflecting wall under the well-mixed dispersion model (the
+//! wall reflects in this mode, so that nothing deposits twice), and inertial particles keep
+//! their bulk concentration in the layer to the extent the transport does; depo's channel
+//! study prints `C_w / C` beside each `V+`.
+//!
+//! ## What arrives at a wall with a wall law
+//! Where the surface has a Brach & Dunn law, the correlation says that a particle arrives,
+//! not how; the law then decides between rebound and capture with the velocity the particle
+//! has in the layer, its wall-normal component turned towards the wall (a free flight from
+//! the layer to the wall). In depo's tracker that velocity carries the particle's thermal
+//! (Brownian) velocity, which dominates in the diffusion regime, and its drag-relaxed
+//! velocity with the fluid's fluctuation and settling, which dominates in the inertial one.
+//! The deposited flux is then `v_d C` times the law's capture share of the arrivals.
+//!
+//! ## References
+//! - Wood, N. B. (1981), *A simple method for the calculation of turbulent deposition to
+//!   smooth and rough surfaces*, J. Aerosol Sci. 12:275-290.
+//! - Papavergos, P. G. & Hedley, A. B. (1984), *Particle deposition behaviour from turbulent
+//!   flows*, Chem. Eng. Res. Des. 62:275-295.
+//! - Lai, A. C. K. & Nazaroff, W. W. (2000), *Modeling indoor particle deposition from
+//!   turbulent flow onto smooth surfaces*, J. Aerosol Sci. 31:463-476.
+
+use crate::air::{Aerodynamics, Air};
+use crate::correlations::{papavergos_hedley, wood, LaiNazaroff};
+use crate::geometry::Orientation;
+
+/// The correlation a wall function takes the deposition velocity from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Correlation {
+    /// Wood (1981), `V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2` (at most 0.13): fully developed
+    /// duct and channel flow, every surface alike (gravity not included).
+    Wood,
+    /// Papavergos & Hedley (1984): `0.065 Sc^(-2/3)`, `3.5e-4 tau+^2`, `0.18` by regime; as
+    /// [`Correlation::Wood`].
+    PapavergosHedley,
+    /// Lai & Nazaroff (2000): a room's floor, ceiling and walls by orientation, with settling
+    /// (Brownian and turbulent diffusion and gravity; no inertia).
+    LaiNazaroff,
+}
+
+impl Correlation {
+    /// Every correlation with its name as scene files and the command write it.
+    pub const NAMED: [(&'static str, Correlation); 3] = [
+        ("wood", Correlation::Wood),
+        ("papavergos-hedley", Correlation::PapavergosHedley),
+        ("lai-nazaroff", Correlation::LaiNazaroff),
+    ];
+
+    /// Its name (`wood`, `papavergos-hedley`, `lai-nazaroff`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        Self::NAMED.iter().find(|(_, c)| *c == self).map_or("", |(n, _)| n)
+    }
+}
+
+/// A deposition wall function on a scene's walls (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WallFunction {
+    /// Where the deposition velocity comes from.
+    pub correlation: Correlation,
+    /// The layer's thickness `y_w` in wall units, `y_w u* / nu` (30 by default: the bottom
+    /// of the logarithmic layer, where wall-function meshes put their first cell).
+    pub layer_plus: f64,
+}
+
+impl WallFunction {
+    /// The default layer, in wall units.
+    pub const LAYER_PLUS: f64 = 30.0;
+
+    /// `correlation` over a layer of [`WallFunction::LAYER_PLUS`].
+    #[must_use]
+    pub fn new(correlation: Correlation) -> Self {
+        Self { correlation, layer_plus: Self::LAYER_PLUS }
+    }
+
+    /// The layer's thickness, m, for friction velocity `u*` (m/s) in `air`.
+    #[must_use]
+    pub fn layer(&self, air: &Air, friction_velocity: f64) -> f64 {
+        self.layer_plus * air.kinematic_viscosity() / friction_velocity
+    }
+}
+
+/// The deposition velocity (m/s) that `correlation` gives onto a smooth surface facing
+/// `orientation`, for a particle `aero` (settling speed under the scene's gravity) in `air`
+/// with friction velocity `u*` (m/s).
+#[must_use]
+pub fn deposition_velocity(
+    correlation: Correlation,
+    aero: &Aerodynamics,
+    air: &Air,
+    friction_velocity: f64,
+    orientation: Orientation,
+) -> f64 {
+    let nu = air.kinematic_viscosity();
+    let schmidt = nu / aero.diffusivity;
+    let tau_plus = aero.relaxation_time * friction_velocity * friction_velocity / nu;
+    match correlation {
+        Correlation::Wood => wood(tau_plus, schmidt) * friction_velocity,
+        Correlation::PapavergosHedley => papavergos_hedley(tau_plus, schmidt) * friction_velocity,
+        Correlation::LaiNazaroff => {
+            let r_plus = 0.5 * aero.diameter * friction_velocity / nu;
+            let integral = crate::correlations::lai_nazaroff_integral(schmidt, r_plus);
+            let ln = LaiNazaroff::from_integral(integral, aero.settling_speed, friction_velocity);
+            match orientation {
+                Orientation::Floor => ln.floor,
+                Orientation::Ceiling => ln.ceiling,
+                Orientation::Wall => ln.wall,
+            }
+        }
+    }
+}
+
+/// The chance that a particle in a near-wall layer of thickness `layer` (m) throughout a step
+/// of `dt` (s) deposits within it, for deposition velocity `v_d` (m/s):
+/// `1 - exp(-v_d dt / layer)` (module docs). 0 for `v_d = 0`, below 1 for any finite step.
+#[inline]
+#[must_use]
+pub fn deposition_probability(deposition_velocity: f64, layer: f64, dt: f64) -> f64 {
+    -(-deposition_velocity * dt / layer).exp_m1()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_probability_is_the_poisson_chance_of_the_layer_s_rate() {
+        // v_d = 1 mm/s over a 5 mm layer: k = 0.2 /s; over 0.1 s, 1 - e^-0.02.
+        let p = deposition_probability(1e-3, 5e-3, 0.1);
+        assert!((p - 0.019_801_326_693_244_71).abs() < 1e-15, "{p}");
+        // Small k dt: k dt; long steps: towards 1, never above.
+        assert!((deposition_probability(1e-9, 1e-2, 1e-3) / 1e-10 - 1.0).abs() < 1e-9);
+        assert_eq!(deposition_probability(0.0, 1e-2, 1.0), 0.0);
+        let long = deposition_probability(1.0, 1e-3, 1e3);
+        assert!(long <= 1.0 && long > 0.999_999);
+        // Two half steps deposit as one step does: 1 - (1 - p/2-step)^2.
+        let half = deposition_probability(2e-3, 4e-3, 0.05);
+        assert!((1.0 - (1.0 - half).powi(2) - deposition_probability(2e-3, 4e-3, 0.1)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_velocity_is_the_correlation_s_on_each_surface() {
+        let air = Air::standard();
+        let (u_star, nu) = (0.3, air.kinematic_viscosity());
+        // A 5 um particle of 1000 kg/m^3, no gravity (a channel).
+        let aero = Aerodynamics::new(5e-6, 1000.0, &air, 0.0);
+        let tau_plus = aero.relaxation_time * u_star * u_star / nu;
+        let sc = nu / aero.diffusivity;
+        for orientation in [Orientation::Floor, Orientation::Wall, Orientation::Ceiling] {
+            let v = deposition_velocity(Correlation::Wood, &aero, &air, u_star, orientation);
+            let by_hand = (0.057 * sc.powf(-2.0 / 3.0) + 4.5e-4 * tau_plus * tau_plus).min(0.13) * u_star;
+            assert!((v / by_hand - 1.0).abs() < 1e-12, "{v} {by_hand}");
+            let v = deposition_velocity(Correlation::PapavergosHedley, &aero, &air, u_star, orientation);
+            assert!((v / (3.5e-4 * tau_plus * tau_plus * u_star) - 1.0).abs() < 1e-12);
+        }
+        // Lai & Nazaroff with settling: floor above wall above ceiling, floor - ceiling = v_s.
+        let settling = Aerodynamics::new(5e-6, 1000.0, &air, 9.80665);
+        let ln = |o| deposition_velocity(Correlation::LaiNazaroff, &settling, &air, 0.01, o);
+        let (floor, wall, ceiling) = (ln(Orientation::Floor), ln(Orientation::Wall), ln(Orientation::Ceiling));
+        assert!(floor > wall && wall > ceiling, "{floor} {wall} {ceiling}");
+        assert!((floor - ceiling - settling.settling_speed).abs() < 1e-12 * floor);
+        let direct = LaiNazaroff::new(5e-6, 1000.0, &air, 9.80665, 0.01);
+        assert!((wall / direct.wall - 1.0).abs() < 1e-12 && (floor / direct.floor - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_layer_is_in_wall_units() {
+        let air = Air::standard();
+        let w = WallFunction::new(Correlation::Wood);
+        assert!((w.layer(&air, 0.3) * 0.3 / air.kinematic_viscosity() - 30.0).abs() < 1e-12);
+        assert_eq!(Correlation::PapavergosHedley.name(), "papavergos-hedley");
+    }
+}
