@@ -1,0 +1,13 @@
+# The channel case: the box mesh written by box_mesh.py, and for a particle stage the
+# flow stage's checkpoint to restart from (CHANNEL_RESTART, set by run_channel.sh).
+import os
+
+
+def define_domain_parameters(domain):
+    if domain.param is None:
+        domain.preprocess_on_restart = False
+        domain.mesh_input = None
+        domain.partition_input = None
+        domain.restart_input = os.environ.get("CHANNEL_RESTART") or None
+        domain.mesh_dir = None
+        domain.meshes = ["box.msh"]

@@ -1,0 +1,53 @@
+/* Reads `channel_run` (see channel.h). */
+
+#include "cs_defs.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bft_error.h"
+
+#include "channel.h"
+
+BEGIN_C_DECLS
+
+const channel_run_t *
+channel_run(void)
+{
+  static channel_run_t run = {-1, 0, 0, 0};
+  if (run.stage >= 0)
+    return &run;
+  FILE *f = fopen("channel_run", "r");
+  if (f == NULL)
+    bft_error(__FILE__, __LINE__, 0, "channel: no file channel_run in DATA\n");
+  char key[32], value[32];
+  while (fscanf(f, "%31s %31s", key, value) == 2) {
+    if (strcmp(key, "stage") == 0) {
+      if (strcmp(value, "flow") == 0)
+        run.stage = CHANNEL_FLOW;
+      else if (strcmp(value, "model") == 0)
+        run.stage = CHANNEL_MODEL;
+      else if (strcmp(value, "no-model") == 0)
+        run.stage = CHANNEL_NO_MODEL;
+      else
+        bft_error(__FILE__, __LINE__, 0, "channel: stage \"%s\" is not flow, model or no-model\n", value);
+    }
+    else if (strcmp(key, "particles") == 0)
+      run.particles = atol(value);
+    else if (strcmp(key, "flow_steps") == 0)
+      run.flow_steps = atoi(value);
+    else if (strcmp(key, "particle_steps") == 0)
+      run.particle_steps = atoi(value);
+    else
+      bft_error(__FILE__, __LINE__, 0, "channel: unknown key \"%s\" in channel_run\n", key);
+  }
+  fclose(f);
+  if (run.stage < 0 || run.flow_steps <= 0
+      || (run.stage != CHANNEL_FLOW && (run.particles <= 0 || run.particle_steps <= 0)))
+    bft_error(__FILE__, __LINE__, 0, "channel: channel_run needs stage, flow_steps, and for "
+              "a particle stage particles and particle_steps\n");
+  return &run;
+}
+
+END_C_DECLS
