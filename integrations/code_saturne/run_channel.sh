@@ -9,7 +9,8 @@
 # off ("no-model"); then channel_report.py writes WORK_DIR/channel_peer.csv. Does not use
 # libdepo. The run's size can be changed through the environment:
 #   CHANNEL_PARTICLES       particles per class (default 15000)
-#   CHANNEL_PARTICLE_STEPS  steps of 0.2 ms of each particle stage (default 2500: 0.5 s)
+#   CHANNEL_PARTICLE_STEPS  steps of each particle stage (default 2500: 0.5 s at 0.2 ms)
+#   CHANNEL_PARTICLE_DT     time step of the particle stages, s (default 2e-4)
 #   CHANNEL_TRANSIENT       seconds after the injection left out of the count (default 0.2)
 #   CHANNEL_FLOW_STEPS      steps of 2 ms of the flow stage (default 3000: 6 s)
 set -euo pipefail
@@ -17,6 +18,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 work="$1"
 particles="${CHANNEL_PARTICLES:-15000}"
 particle_steps="${CHANNEL_PARTICLE_STEPS:-2500}"
+particle_dt="${CHANNEL_PARTICLE_DT:-2e-4}"
 transient="${CHANNEL_TRANSIENT:-0.2}"
 flow_steps="${CHANNEL_FLOW_STEPS:-3000}"
 # Code_Saturne 6.0 reads USER to find its scratch settings.
@@ -39,6 +41,7 @@ for stage in flow model no-model; do
     echo "flow_steps $flow_steps"
     echo "particles $particles"
     echo "particle_steps $particle_steps"
+    echo "particle_dt $particle_dt"
   } > "study/$stage/DATA/channel_run"
   restart=""
   [ "$stage" = flow ] || restart="$work/study/flow/RESU/run/checkpoint"

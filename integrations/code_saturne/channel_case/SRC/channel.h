@@ -42,7 +42,8 @@ channel_diameter(int c)
      stage flow | model | no-model
      particles N        (per class; particle stages)
      flow_steps N       (steps of the flow stage, at CHANNEL_DT_FLOW)
-     particle_steps N   (steps of a particle stage, at CHANNEL_DT_PARTICLES)
+     particle_steps N   (steps of a particle stage)
+     particle_dt S      (a particle stage's time step, s; CHANNEL_DT_PARTICLES unless given)
    "flow" develops the flow from rest; "model" and "no-model" restart from it with
    particles, Code_Saturne's deposition model (Guingo & Minier 2008) on or off. */
 #define CHANNEL_FLOW 0
@@ -57,6 +58,7 @@ typedef struct {
   long particles;
   int flow_steps;
   int particle_steps;
+  double particle_dt;
 } channel_run_t;
 
 /* The run's settings, read once from `channel_run`. */

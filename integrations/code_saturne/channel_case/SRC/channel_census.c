@@ -124,7 +124,7 @@ cs_user_lagr_extra_operations(const cs_real_t  dt[])
     f = fopen("channel_counts.csv", "w");
     fprintf(f, "# stage %s, %ld particles per class, step %g s, ustar at the first particle step %.6f m/s\n",
             run->stage == CHANNEL_MODEL ? "guingo-minier" : "no-model", run->particles,
-            CHANNEL_DT_PARTICLES, _mean_ustar());
+            run->particle_dt, _mean_ustar());
     fprintf(f, "# wall area %.9g m^2, volume %.9g m^3, wall cells' volume %.9g m^3\n",
             2.0 * CHANNEL_LX * CHANNEL_LY, 2.0 * CHANNEL_H_HALF * CHANNEL_LX * CHANNEL_LY,
             2.0 * (2.0 * CHANNEL_H_HALF / CHANNEL_NZ) * CHANNEL_LX * CHANNEL_LY);
@@ -159,7 +159,7 @@ cs_user_lagr_extra_operations(const cs_real_t  dt[])
       abs_vz[c] += fabs(v[2]);
     }
   }
-  fprintf(f, "%d,%.6e", step, step * CHANNEL_DT_PARTICLES);
+  fprintf(f, "%d,%.6e", step, step * run->particle_dt);
   for (int c = 0; c < CHANNEL_CLASSES; c++)
     fprintf(f, ",%ld", airborne[c]);
   for (int c = 0; c < CHANNEL_CLASSES; c++)

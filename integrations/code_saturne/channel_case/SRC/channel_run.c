@@ -15,7 +15,7 @@ BEGIN_C_DECLS
 const channel_run_t *
 channel_run(void)
 {
-  static channel_run_t run = {-1, 0, 0, 0};
+  static channel_run_t run = {-1, 0, 0, 0, CHANNEL_DT_PARTICLES};
   if (run.stage >= 0)
     return &run;
   FILE *f = fopen("channel_run", "r");
@@ -39,14 +39,17 @@ channel_run(void)
       run.flow_steps = atoi(value);
     else if (strcmp(key, "particle_steps") == 0)
       run.particle_steps = atoi(value);
+    else if (strcmp(key, "particle_dt") == 0)
+      run.particle_dt = atof(value);
     else
       bft_error(__FILE__, __LINE__, 0, "channel: unknown key \"%s\" in channel_run\n", key);
   }
   fclose(f);
   if (run.stage < 0 || run.flow_steps <= 0
-      || (run.stage != CHANNEL_FLOW && (run.particles <= 0 || run.particle_steps <= 0)))
+      || (run.stage != CHANNEL_FLOW && (run.particles <= 0 || run.particle_steps <= 0
+                                           || !(run.particle_dt > 0.0))))
     bft_error(__FILE__, __LINE__, 0, "channel: channel_run needs stage, flow_steps, and for "
-              "a particle stage particles and particle_steps\n");
+              "a particle stage particles, particle_steps and a positive particle_dt\n");
   return &run;
 }
 

@@ -1,7 +1,7 @@
 /* Channel: standard air, k-epsilon with Code_Saturne's default wall functions, no gravity
    (Wood's correlation is for flow along a vertical wall or without gravity). The flow
-   stage runs from rest at CHANNEL_DT_FLOW; a particle stage restarts from it at
-   CHANNEL_DT_PARTICLES. */
+   stage runs from a plug flow at CHANNEL_DT_FLOW; a particle stage restarts from it at
+   its particle_dt. */
 
 #include "cs_defs.h"
 #include "cs_domain.h"
@@ -37,7 +37,7 @@ cs_user_parameters(cs_domain_t *domain)
     domain->time_step->nt_max = run->flow_steps;
   }
   else {
-    domain->time_step->dt_ref = CHANNEL_DT_PARTICLES;
+    domain->time_step->dt_ref = run->particle_dt;
     domain->time_step->nt_max = run->flow_steps + run->particle_steps;
   }
 
