@@ -22,6 +22,9 @@ module depo
   public :: depo_law_keeping_on_wall, DEPO_CAPTURE_DEPOSIT, DEPO_CAPTURE_KEEP_ON_WALL
   public :: depo_apply, depo_coefficients, depo_capture_velocities, depo_accumulate_deposits
   public :: depo_set_num_threads
+  public :: depo_air, depo_deposition_velocity, depo_wall_function_probability
+  public :: DEPO_CORRELATION_WOOD, DEPO_CORRELATION_PAPAVERGOS_HEDLEY, DEPO_CORRELATION_LAI_NAZAROFF
+  public :: DEPO_SURFACE_FLOOR, DEPO_SURFACE_CEILING, DEPO_SURFACE_WALL
   public :: depo_last_error_message, depo_version_string
 
   !> Status codes (int32_t).
@@ -31,6 +34,17 @@ module depo
                                   DEPO_SKIPPED = 2_c_int8_t, DEPO_INVALID = 3_c_int8_t
   !> Capture modes (depo_law_keeping_on_wall).
   integer, parameter :: DEPO_CAPTURE_DEPOSIT = 0, DEPO_CAPTURE_KEEP_ON_WALL = 1
+
+  !> Deposition correlations and surface orientations of the wall function.
+  integer(c_int32_t), parameter :: DEPO_CORRELATION_WOOD = 0, DEPO_CORRELATION_PAPAVERGOS_HEDLEY = 1, &
+                                   DEPO_CORRELATION_LAI_NAZAROFF = 2
+  integer(c_int32_t), parameter :: DEPO_SURFACE_FLOOR = 0, DEPO_SURFACE_CEILING = 1, DEPO_SURFACE_WALL = 2
+
+  !> The carrier gas (DepoAir): K, Pa, kg/m^3, Pa s; dry air at 20 C by default.
+  type, bind(C) :: depo_air
+    real(c_double) :: temperature = 293.15_c_double, pressure = 101325.0_c_double
+    real(c_double) :: density = 1.204_c_double, viscosity = 1.81e-5_c_double
+  end type depo_air
 
   !> The constants of the law, SI units (DepoLawParams).
   type, bind(C) :: depo_law_params
@@ -165,6 +179,28 @@ module depo
       type(c_ptr), value :: outcome, face, mass, count, deposited_mass
       integer(c_int32_t) :: status
     end function c_depo_accumulate_deposits
+
+    function c_depo_deposition_velocity(correlation, orientation, air, gravity, n, u, d, rho, v) &
+      bind(C, name="depo_deposition_velocity") result(status)
+      import :: c_ptr, c_double, c_size_t, c_int32_t, depo_air
+      integer(c_int32_t), value :: correlation, orientation
+      type(depo_air), intent(in) :: air
+      real(c_double), value :: gravity
+      integer(c_size_t), value :: n
+      type(c_ptr), value :: u, d, rho, v
+      integer(c_int32_t) :: status
+    end function c_depo_deposition_velocity
+
+    function c_depo_wall_function_probability(correlation, orientation, air, gravity, dt, n, u, layer, d, rho, p) &
+      bind(C, name="depo_wall_function_probability") result(status)
+      import :: c_ptr, c_double, c_size_t, c_int32_t, depo_air
+      integer(c_int32_t), value :: correlation, orientation
+      type(depo_air), intent(in) :: air
+      real(c_double), value :: gravity, dt
+      integer(c_size_t), value :: n
+      type(c_ptr), value :: u, layer, d, rho, p
+      integer(c_int32_t) :: status
+    end function c_depo_wall_function_probability
 
     function c_depo_coefficients(law, n, vn, e, r, rho, captured) bind(C, name="depo_coefficients") result(status)
       import :: c_ptr, c_size_t, c_int32_t
@@ -575,5 +611,51 @@ contains
     end if
     call handle(c_depo_accumulate_deposits(int(size(outcome), c_size_t), po, pf, pm, int(size(count), c_size_t), pc, pd), ierr)
   end subroutine depo_accumulate_deposits
+
+  !> The deposition velocity (m/s) a correlation gives onto a surface of an orientation, per
+  !> particle: friction velocity u (m/s) of its wall cell, diameter d (m), density rho (kg/m^3);
+  !> gravity (m/s^2) acts towards floors. See depo_deposition_velocity in depo.h.
+  subroutine depo_deposition_velocity(correlation, orientation, air, gravity, u, d, rho, v, ierr)
+    integer(c_int32_t), intent(in) :: correlation, orientation
+    type(depo_air), intent(in) :: air
+    real(c_double), intent(in) :: gravity
+    real(c_double), intent(in), target, contiguous :: u(:), d(:), rho(:)
+    real(c_double), intent(out), target, contiguous :: v(:)
+    integer, intent(out), optional :: ierr
+    type(c_ptr) :: pu, pd, pr, pv
+    pu = c_null_ptr; pd = c_null_ptr; pr = c_null_ptr; pv = c_null_ptr
+    if (size(d) /= size(u) .or. size(rho) /= size(u) .or. size(v) /= size(u)) then
+      call fail("depo_deposition_velocity: d, rho and v must have the size of u", ierr)
+      return
+    end if
+    if (size(u) > 0) then
+      pu = c_loc(u); pd = c_loc(d); pr = c_loc(rho); pv = c_loc(v)
+    end if
+    call handle(c_depo_deposition_velocity(correlation, orientation, air, gravity, int(size(u), c_size_t), &
+                                           pu, pd, pr, pv), ierr)
+  end subroutine depo_deposition_velocity
+
+  !> The chance p that a particle in a wall cell reaches the wall within a step dt (s):
+  !> 1 - exp(-v_d dt / layer), layer (m) the wall cell's extent normal to the wall. See
+  !> depo_wall_function_probability in depo.h for how a solver uses it.
+  subroutine depo_wall_function_probability(correlation, orientation, air, gravity, dt, u, layer, d, rho, p, ierr)
+    integer(c_int32_t), intent(in) :: correlation, orientation
+    type(depo_air), intent(in) :: air
+    real(c_double), intent(in) :: gravity, dt
+    real(c_double), intent(in), target, contiguous :: u(:), layer(:), d(:), rho(:)
+    real(c_double), intent(out), target, contiguous :: p(:)
+    integer, intent(out), optional :: ierr
+    type(c_ptr) :: pu, pl, pd, pr, pp
+    pu = c_null_ptr; pl = c_null_ptr; pd = c_null_ptr; pr = c_null_ptr; pp = c_null_ptr
+    if (size(layer) /= size(u) .or. size(d) /= size(u) .or. size(rho) /= size(u) .or. size(p) /= size(u)) then
+      call fail("depo_wall_function_probability: layer, d, rho and p must have the size of u", ierr)
+      return
+    end if
+    if (size(u) > 0) then
+      pu = c_loc(u); pl = c_loc(layer); pd = c_loc(d); pr = c_loc(rho); pp = c_loc(p)
+    end if
+    call handle(c_depo_wall_function_probability(correlation, orientation, air, gravity, dt, int(size(u), c_size_t), &
+                                                 pu, pl, pd, pr, pp), ierr)
+  end subroutine depo_wall_function_probability
 
 end module depo

@@ -96,6 +96,38 @@
 #define DEPO_MAX_THREADS 1024
 
 /**
+ * Wood (1981): `V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2`, at most 0.13; ducts and channels,
+ * every surface alike.
+ */
+#define DEPO_CORRELATION_WOOD 0
+
+/**
+ * Papavergos & Hedley (1984): `0.065 Sc^(-2/3)`, `3.5e-4 tau+^2`, `0.18` by regime; ducts
+ * and channels, every surface alike.
+ */
+#define DEPO_CORRELATION_PAPAVERGOS_HEDLEY 1
+
+/**
+ * Lai & Nazaroff (2000): a room's floor, ceiling and walls by orientation, with settling.
+ */
+#define DEPO_CORRELATION_LAI_NAZAROFF 2
+
+/**
+ * An upward-facing surface (a floor; gravity towards it).
+ */
+#define DEPO_SURFACE_FLOOR 0
+
+/**
+ * A downward-facing surface (a ceiling).
+ */
+#define DEPO_SURFACE_CEILING 1
+
+/**
+ * A vertical surface.
+ */
+#define DEPO_SURFACE_WALL 2
+
+/**
  * An opaque wall law: validated constants, made by `depo_law_new` or `depo_law_preset`, freed by
  * `depo_law_free`. Safe to share between threads for reading.
  */
@@ -236,6 +268,17 @@ typedef struct DepoImpactsF32 {
     float normal[3];
     uint8_t *outcome;
 } DepoImpactsF32;
+
+/**
+ * The carrier gas: temperature (K), pressure (Pa), density (kg/m^3) and dynamic viscosity
+ * (Pa s). Dry air at 20 C and one atmosphere is `{293.15, 101325, 1.204, 1.81e-5}`.
+ */
+typedef struct DepoAir {
+    double temperature;
+    double pressure;
+    double density;
+    double viscosity;
+} DepoAir;
 
 #ifdef __cplusplus
 extern "C" {
@@ -405,6 +448,52 @@ int32_t depo_accumulate_deposits(size_t n,
                                  size_t nfaces,
                                  uint64_t *count,
                                  double *deposited_mass);
+
+/**
+ * The deposition velocity (m/s) that `correlation` gives onto a smooth surface facing
+ * `orientation`, for `n` particles of `diameter` (m) and `density` (kg/m^3) in `air` under
+ * `gravity` (m/s^2, magnitude; it acts towards floors), each with the friction velocity of its
+ * wall cell `friction_velocity` (m/s): what an Eulerian wall function multiplies the wall
+ * cell's concentration by. A correlation or orientation that is not a `DEPO_*` value, an air
+ * value that is not finite and positive, a negative gravity, a friction velocity that is not
+ * finite and positive, a diameter outside 1 nm to 1 mm, a density not above the gas's, or
+ * `velocity` overlapping an input is `DEPO_ERR_INVALID` and writes nothing.
+ */
+int32_t depo_deposition_velocity(int32_t correlation,
+                                 int32_t orientation,
+                                 const struct DepoAir *air,
+                                 double gravity,
+                                 size_t n,
+                                 const double *friction_velocity,
+                                 const double *diameter,
+                                 const double *density,
+                                 double *velocity);
+
+/**
+ * The chance that a particle in a wall cell deposits within a step of `dt` (s), for `n`
+ * particles: `probability[i] = 1 - exp(-v_d dt / layer[i])`, with `v_d` the deposition
+ * velocity of `depo_deposition_velocity` and `layer[i]` the thickness (m) of the near-wall
+ * layer the particle is in: its wall cell's extent normal to the wall (twice the cell centre's
+ * wall distance for a cell with a face on the wall).
+ *
+ * A wall cell holding the concentration `C` then deposits the correlation's flux `v_d C`. Draw
+ * a uniform number per particle; below `probability[i]` the particle reaches the wall in this
+ * step: deposit it, or hand its velocity (its normal component turned towards the wall) to
+ * `depo_apply_f64` where the wall has a Brach & Dunn law. The wall itself should then
+ * reflect particles, so that none deposits twice. Its errors are those of
+ * `depo_deposition_velocity`, and a `dt` or `layer[i]` that is not finite and positive.
+ */
+int32_t depo_wall_function_probability(int32_t correlation,
+                                       int32_t orientation,
+                                       const struct DepoAir *air,
+                                       double gravity,
+                                       double dt,
+                                       size_t n,
+                                       const double *friction_velocity,
+                                       const double *layer,
+                                       const double *diameter,
+                                       const double *density,
+                                       double *probability);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -35,6 +35,18 @@ inline std::string version() { return depo_version(); }
 /// hosts; at most DEPO_MAX_THREADS). Batches below DEPO_PARALLEL_MIN always run on the caller.
 inline void set_num_threads(std::size_t threads) { check(depo_set_num_threads(threads)); }
 
+/// The chance that each of `n` particles in wall cells reaches the wall within a step `dt`
+/// (s), from a deposition correlation (depo_wall_function_probability: the arrays, units and
+/// how a solver uses the chance are in depo.h). Throws depo::Error on bad inputs, writing
+/// nothing.
+inline void wall_function_probability(std::int32_t correlation, std::int32_t orientation, const DepoAir& air,
+                                      double gravity, double dt, std::size_t n, const double* friction_velocity,
+                                      const double* layer, const double* diameter, const double* density,
+                                      double* probability) {
+    check(depo_wall_function_probability(correlation, orientation, &air, gravity, dt, n, friction_velocity, layer,
+                                         diameter, density, probability));
+}
+
 /// An owned wall law; move-only.
 class WallLaw {
   public:

@@ -1,7 +1,9 @@
 //! # libdepo: the C ABI of depo
 //!
 //! Lets C, C++ and Fortran solvers apply the Brach & Dunn wall law to their own particle
-//! arrays, without copies. The header `include/depo.h` is generated from this file by cbindgen
+//! arrays, without copies, and, where their meshes do not resolve the near-wall layer, take
+//! the chance of a particle in a wall cell reaching the wall from a deposition correlation
+//! (`depo_wall_function_probability`, in `wall_function`). The header `include/depo.h` is generated from this file by cbindgen
 //! (`cbindgen.toml`); `fortran/depo.f90` and `include/depo.hpp` wrap it for Fortran and C++.
 //!
 //! Conventions, after rustls-ffi:
@@ -210,6 +212,12 @@ macro_rules! ffi_guard {
 
 mod deposition;
 pub use deposition::depo_accumulate_deposits;
+mod wall_function;
+pub use wall_function::{
+    depo_deposition_velocity, depo_wall_function_probability, DepoAir, DEPO_CORRELATION_LAI_NAZAROFF,
+    DEPO_CORRELATION_PAPAVERGOS_HEDLEY, DEPO_CORRELATION_WOOD, DEPO_SURFACE_CEILING, DEPO_SURFACE_FLOOR,
+    DEPO_SURFACE_WALL,
+};
 
 /// `&T` from a pointer that must not be NULL.
 unsafe fn required<'a, T>(ptr: *const T, what: &str) -> Result<&'a T, Failure> {

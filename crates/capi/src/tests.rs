@@ -835,3 +835,100 @@ fn strided_arrays_of_structures_match_contiguous_arrays() {
     assert!((tally.energy_material - expected.energy_material).abs() <= 1e-9 * expected.energy_material);
     unsafe { depo_law_free(law) };
 }
+
+const AIR: DepoAir = DepoAir { temperature: 293.15, pressure: 101_325.0, density: 1.204, viscosity: 1.81e-5 };
+
+/// One particle's wall-function chance, or the call's status and message.
+fn chance(
+    correlation: i32,
+    orientation: i32,
+    dt: f64,
+    u: f64,
+    layer: f64,
+    d: f64,
+    rho: f64,
+) -> Result<f64, (i32, String)> {
+    let mut p = f64::NAN;
+    let status = unsafe {
+        depo_wall_function_probability(correlation, orientation, &AIR, 9.80665, dt, 1, &u, &layer, &d, &rho, &mut p)
+    };
+    if status == DEPO_OK {
+        Ok(p)
+    } else {
+        assert!(p.is_nan(), "a failing call wrote {p}");
+        Err((status, last_error()))
+    }
+}
+
+/// A 5 um unit-density sphere at u* = 0.3 m/s in air at 20 C, worked out by hand from Hinds
+/// (1999): mean free path 0.066434 um (0.0673 um at 23 C carried by Sutherland's form), slip
+/// 1 + (lambda/d)(2.34 + 1.05 exp(-0.39 d/lambda)) = 1.031091, tau = rho d^2 Cc / (18 mu) =
+/// 7.91199e-5 s, tau+ = 0.473670, D = kT Cc / (3 pi mu d) = 4.89272e-12 m^2/s, Sc = 3.07257e6;
+/// Wood's V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2 = 1.036606e-4, v_d = 3.109819e-5 m/s; over a
+/// 1.5 mm layer and 1 ms, 1 - exp(-2.073213e-5) = 2.073191e-5.
+#[test]
+fn the_wall_function_chance_is_wood_s_rate_over_the_layer() {
+    let p = chance(DEPO_CORRELATION_WOOD, DEPO_SURFACE_WALL, 1e-3, 0.3, 1.5e-3, 5e-6, 1000.0).unwrap();
+    assert!((p / 2.073_191e-5 - 1.0).abs() < 1e-6, "{p}");
+    let mut v = 0.0;
+    let status = unsafe {
+        depo_deposition_velocity(DEPO_CORRELATION_WOOD, DEPO_SURFACE_WALL, &AIR, 0.0, 1, &0.3, &5e-6, &1000.0, &mut v)
+    };
+    assert_eq!(status, DEPO_OK);
+    assert!((v / 3.109_819e-5 - 1.0).abs() < 1e-6, "{v}");
+    // Lai & Nazaroff orders the surfaces; Wood does not tell them apart.
+    let ln = |o| chance(DEPO_CORRELATION_LAI_NAZAROFF, o, 0.1, 0.01, 0.045, 3e-6, 1000.0).unwrap();
+    assert!(ln(DEPO_SURFACE_FLOOR) > ln(DEPO_SURFACE_WALL) && ln(DEPO_SURFACE_WALL) > ln(DEPO_SURFACE_CEILING));
+    let wood = |o| chance(DEPO_CORRELATION_WOOD, o, 0.1, 0.01, 0.045, 3e-6, 1000.0).unwrap();
+    assert_eq!(wood(DEPO_SURFACE_FLOOR), wood(DEPO_SURFACE_CEILING));
+    // Zero particles: nothing read, nothing written.
+    let status =
+        unsafe { depo_wall_function_probability(0, 0, &AIR, 9.8, 0.1, 0, null(), null(), null(), null(), null_mut()) };
+    assert_eq!(status, DEPO_OK);
+}
+
+/// A wall-function call's inputs: correlation, orientation, dt, u*, layer, diameter, density.
+type WallFunctionCall = (i32, i32, f64, f64, f64, f64, f64);
+
+#[test]
+fn wall_function_inputs_out_of_range_are_refused_by_name() {
+    let ok = (DEPO_CORRELATION_WOOD, DEPO_SURFACE_FLOOR, 1e-3, 0.3, 1e-3, 5e-6, 1000.0);
+    let cases: [(WallFunctionCall, &str); 10] = [
+        ((7, ok.1, ok.2, ok.3, ok.4, ok.5, ok.6), "correlation"),
+        ((ok.0, 9, ok.2, ok.3, ok.4, ok.5, ok.6), "orientation"),
+        ((ok.0, ok.1, 0.0, ok.3, ok.4, ok.5, ok.6), "dt"),
+        ((ok.0, ok.1, f64::INFINITY, ok.3, ok.4, ok.5, ok.6), "dt"),
+        ((ok.0, ok.1, ok.2, -0.3, ok.4, ok.5, ok.6), "friction_velocity[0]"),
+        ((ok.0, ok.1, ok.2, ok.3, f64::NAN, ok.5, ok.6), "layer[0]"),
+        ((ok.0, ok.1, ok.2, ok.3, 0.0, ok.5, ok.6), "layer[0]"),
+        ((ok.0, ok.1, ok.2, ok.3, ok.4, 1.0, ok.6), "diameter[0]"),
+        ((ok.0, ok.1, ok.2, ok.3, ok.4, 1e-12, ok.6), "diameter[0]"),
+        ((ok.0, ok.1, ok.2, ok.3, ok.4, ok.5, 1.0), "density[0]"),
+    ];
+    for ((c, o, dt, u, y, d, rho), name) in cases {
+        let (status, message) = chance(c, o, dt, u, y, d, rho).unwrap_err();
+        assert_eq!(status, DEPO_ERR_INVALID, "{name}");
+        assert!(message.contains(name), "{name}: {message}");
+    }
+    let mut p = 0.5;
+    let status =
+        unsafe { depo_wall_function_probability(0, 0, null(), 9.8, 0.1, 1, &0.3, &1e-3, &5e-6, &1000.0, &mut p) };
+    assert_eq!((status, p), (DEPO_ERR_NULL, 0.5));
+}
+
+proptest! {
+    /// From any inputs in range, extreme ones included, a chance in [0, 1], never NaN.
+    #[test]
+    fn wall_function_chances_are_probabilities(
+        correlation in 0i32..3,
+        orientation in 0i32..3,
+        dt in 1e-9f64..1e4,
+        u in 1e-6f64..1e3,
+        layer in 1e-9f64..10.0,
+        log_d in -9f64..-3.0,
+        rho in 1.3f64..2e4,
+    ) {
+        let p = chance(correlation, orientation, dt, u, layer, 10f64.powf(log_d), rho).unwrap();
+        prop_assert!((0.0..=1.0).contains(&p), "{}", p);
+    }
+}

@@ -19,6 +19,8 @@ program checks
   integer(c_int8_t) :: outcome(4), outcome32(4), captured(3)
   integer(c_int64_t) :: face(4), count(2)
   integer :: ierr, failures
+  type(depo_air) :: air
+  real(dp) :: u_star(2), layer(2), diameter(2), density(2), chance(2), v_d(2)
 
   failures = 0
   call depo_law_create(law, depo_law_params(12.5_dp, 12.5_dp, 0.065_dp, 0.065_dp, 1.0_dp, 0.5_dp, 0.074_dp, 0.3_dp))
@@ -128,6 +130,26 @@ program checks
   call check(ierr == DEPO_ERR_NULL .and. all(count == 0), 'deposits: mass without deposited_mass')
   call depo_accumulate_deposits(outcome, face, count, mass=mass, deposited_mass=deposited, ierr=ierr)
   call check(ierr == DEPO_OK .and. all(count == [1, 2]) .and. all(deposited == [1.0_dp, 2.0_dp]), 'deposits counted')
+
+  ! Wall function: the chance is 1 - exp(-v_d dt / layer) of the deposition velocity; a bad
+  ! layer is refused and writes nothing.
+  u_star = [0.3_dp, 0.01_dp]
+  layer = [1.5e-3_dp, 4.5e-2_dp]
+  diameter = [5.0e-6_dp, 1.0e-6_dp]
+  density = 1000.0_dp
+  call depo_deposition_velocity(DEPO_CORRELATION_WOOD, DEPO_SURFACE_WALL, air, 0.0_dp, u_star, diameter, density, &
+                                v_d, ierr=ierr)
+  call check(ierr == DEPO_OK .and. all(v_d > 0.0_dp), 'deposition velocities')
+  call depo_wall_function_probability(DEPO_CORRELATION_WOOD, DEPO_SURFACE_WALL, air, 0.0_dp, 1.0e-3_dp, u_star, &
+                                      layer, diameter, density, chance, ierr=ierr)
+  call check(ierr == DEPO_OK .and. all(abs(chance - (1.0_dp - exp(-v_d * 1.0e-3_dp / layer))) < 1.0e-15_dp), &
+             'wall-function chances')
+  chance = 7.0_dp
+  layer(2) = -1.0_dp
+  call depo_wall_function_probability(DEPO_CORRELATION_LAI_NAZAROFF, DEPO_SURFACE_FLOOR, air, 9.81_dp, 0.1_dp, &
+                                      u_star, layer, diameter, density, chance, ierr=ierr)
+  call check(ierr == DEPO_ERR_INVALID .and. all(chance == 7.0_dp) .and. index(depo_last_error_message(), 'layer[1]') > 0, &
+             'a negative layer')
 
   ! Threads: a negative count is refused, not passed on as a huge size; so is an absurd one.
   call depo_set_num_threads(-1, ierr)
