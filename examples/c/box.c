@@ -1,5 +1,9 @@
 /* depo from C: particles in a box, wall hits handed to depo each step, captured ones removed.
- *   cc -I crates/capi/include examples/c/box.c -L target/release -ldepo -lm -o box && ./box [N] */
+ * From the repository root, after the one release build (README), linked statically:
+ *   cc -I crates/capi/include examples/c/box.c target/release/libdepo.a -lpthread -ldl -lm -o box && ./box [N]
+ * or against the shared library installed by `crates/capi/install.sh $HOME/.local` (target/release
+ * has libdepo.so but not the libdepo.so.0.1 a program asks for at run time; the install has both):
+ *   cc examples/c/box.c $(PKG_CONFIG_PATH=$HOME/.local/lib/pkgconfig pkg-config --cflags --libs depo) -lm -o box */
 #include <string.h>
 
 #include "box_solver.h"

@@ -1,6 +1,9 @@
 // depo from C++: the box solver with std::vector arrays and the RAII layer of depo.hpp;
 // particles of 35 to 140 um, each with its own capture velocity.
-//   c++ -std=c++17 -I crates/capi/include examples/cpp/box.cpp -L target/release -ldepo -o box && ./box [N]
+// From the repository root, after the one release build (README), linked statically:
+//   c++ -std=c++17 -I crates/capi/include examples/cpp/box.cpp target/release/libdepo.a -lpthread -ldl -o box && ./box [N]
+// or after `crates/capi/install.sh $HOME/.local`, with PKG_CONFIG_PATH=$HOME/.local/lib/pkgconfig:
+//   c++ -std=c++17 examples/cpp/box.cpp $(pkg-config --cflags --libs depo) -o box
 #include <array>
 #include <cstdint>
 #include <cstdio>

@@ -1,7 +1,10 @@
 !> depo from Fortran: particles of 35 to 140 um in a box under gravity, each with its own
 !> capture velocity; each step's wall hits go to depo as one batch on the solver's own arrays;
 !> captured particles are removed.
-!>   gfortran crates/capi/fortran/depo.f90 examples/fortran/box.f90 -L target/release -ldepo -o box
+!> From the repository root, after the one release build (README), linked statically:
+!>   gfortran crates/capi/fortran/depo.f90 examples/fortran/box.f90 target/release/libdepo.a -lpthread -ldl -lm -o box
+!> or after `crates/capi/install.sh $HOME/.local`, with PKG_CONFIG_PATH=$HOME/.local/lib/pkgconfig:
+!>   gfortran $HOME/.local/share/depo/fortran/depo.f90 examples/fortran/box.f90 $(pkg-config --libs depo) -o box
 program box
   use, intrinsic :: iso_c_binding, only: c_double, c_int8_t, c_int64_t
   use depo

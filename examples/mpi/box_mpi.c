@@ -1,7 +1,10 @@
 /* depo inside an MPI solver: every rank applies the law to its own particles; the tallies
  * are reduced to rank 0. depo needs no distribution layer of its own.
- *   mpicc -I crates/capi/include -I examples/c examples/mpi/box_mpi.c -L target/release -ldepo -lm
- *   mpirun -np 2 ./a.out [N per rank] */
+ * From the repository root, after the one release build (README), linked statically:
+ *   mpicc -I crates/capi/include -I examples/c examples/mpi/box_mpi.c target/release/libdepo.a -lpthread -ldl -lm -o box_mpi
+ * or after `crates/capi/install.sh $HOME/.local`, with PKG_CONFIG_PATH=$HOME/.local/lib/pkgconfig:
+ *   mpicc -I examples/c examples/mpi/box_mpi.c $(pkg-config --cflags --libs depo) -lm -o box_mpi
+ * then: mpirun -np 2 ./box_mpi [N per rank] */
 #include <mpi.h>
 #include <string.h>
 
