@@ -7,8 +7,9 @@ use std::path::PathBuf;
 use clap::Args as ClapArgs;
 use depo::tracker::correlations::{band_factor, diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
 use depo::tracker::measurements::SIPPOLA_NAZAROFF_2004;
+use depo::tracker::studies::ChannelStudy;
 use depo::tracker::studies::CHANNEL_SWEEPS;
-use depo::tracker::{Air, Geometry};
+use depo::tracker::{Air, Correlation, Geometry, WallFunction};
 use serde::Serialize;
 
 use super::plot::{self, Series};
@@ -28,6 +29,42 @@ pub struct ChannelArgs {
     /// Write the figure (V+ against tau+) to this SVG file.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// How deposition at the walls is modelled: `resolved` (the near-wall layer tracked to
+    /// the wall), `wall-function` (a particle within 30 wall units deposits at the rate of
+    /// Wood's correlation; docs/tracker.md), or `all`: both, and the figure beside Code_Saturne's
+    /// own deposition model and the measurements. Without it, the scene's `run.near_wall`.
+    #[arg(long, value_enum)]
+    near_wall: Option<NearWallChoice>,
+}
+
+/// The deposition models `--near-wall` chooses between.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NearWallChoice {
+    Resolved,
+    WallFunction,
+    All,
+}
+
+/// Code_Saturne 6.0.2's own Lagrangian deposition in a channel meshed with wall functions
+/// (integrations/code_saturne/channel_case: its results as run there).
+const CODE_SATURNE_PEER: &str = include_str!("../../integrations/code_saturne/channel_peer.csv");
+
+/// The peer's `(tau+, V+, standard error)` for one `model` of its CSV (`guingo-minier`,
+/// `no-model`).
+fn peer_points(model: &str) -> Vec<(f64, f64, f64)> {
+    let mut lines = CODE_SATURNE_PEER.lines();
+    let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name);
+    let (Some(t), Some(m), Some(v), Some(e)) =
+        (column("tau_plus"), column("model"), column("v_plus"), column("v_plus_error"))
+    else {
+        return Vec::new();
+    };
+    lines
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|f| f.get(m) == Some(&model))
+        .filter_map(|f| Some((f.get(t)?.parse().ok()?, f.get(v)?.parse().ok()?, f.get(e)?.parse().ok()?)))
+        .collect()
 }
 
 #[derive(Serialize)]
@@ -84,6 +121,35 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
         }
         study.tau_plus.clone_from(list);
     }
+    let with_wall_function = |mut study: ChannelStudy| {
+        study.scene.wall_function = Some(study.scene.wall_function.unwrap_or(WallFunction::new(Correlation::Wood)));
+        study
+    };
+    let resolved = |mut study: ChannelStudy| {
+        study.scene.wall_function = None;
+        study
+    };
+    let studies = match args.near_wall {
+        None => vec![study],
+        Some(NearWallChoice::Resolved) => vec![resolved(study)],
+        Some(NearWallChoice::WallFunction) => vec![with_wall_function(study)],
+        Some(NearWallChoice::All) => vec![resolved(study.clone()), with_wall_function(study)],
+    };
+    let mut figure = Vec::new();
+    for study in &studies {
+        figure.push(run_one(args, study, &source)?);
+    }
+    if let Some(path) = &args.plot {
+        draw(path, &studies[0], &figure, args.near_wall == Some(NearWallChoice::All))?;
+    }
+    Ok(())
+}
+
+/// What a study's figure draws of it: its name and rows.
+type Drawn = (&'static str, Vec<Row>);
+
+/// Runs one channel study and prints it: its rows, for the figure.
+fn run_one(args: &ChannelArgs, study: &ChannelStudy, source: &scene_file::SceneSource) -> Result<Drawn, Error> {
     let progress = progress_bar(study.tau_plus.len(), "tau+")?;
     let start = std::time::Instant::now();
     let points = study.run(|done| progress.set_position(done as u64)).map_err(|e| source.scene_error(&e))?;
@@ -174,12 +240,20 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 ),
                 None => String::new(),
             };
-            out!(
-                "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+ ({} below tau+ {} with excursions){more}; V+ = v_d / u*",
-                study.count,
-                study.excursion_count,
-                study.excursions_below
-            );
+            match study.scene.wall_function {
+                Some(wf) => out!(
+                    "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+{more}; V+ = v_d / u*; wall function: within {} wall units of a wall, deposition at the rate of {} (V+ = the correlation's times C_w/C, the layer's concentration over the mean)",
+                    study.count,
+                    wf.layer_plus,
+                    wf.correlation.name()
+                ),
+                None => out!(
+                    "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+ ({} below tau+ {} with excursions){more}; V+ = v_d / u*",
+                    study.count,
+                    study.excursion_count,
+                    study.excursions_below
+                ),
+            }
             out!(
                 "{:>8} {:>9} {:>9}  {:>28}  {:>9} {:>9} {:>7} {:>8} {:>9}  method",
                 "tau+",
@@ -222,7 +296,7 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
                 .collect();
             if below.iter().any(|t| (0.2..=5.0).contains(t)) {
                 out!(
-                    "! below the band by more than a factor 2: in the diffusion-impaction regime (tau+ about 0.3-3) the near-wall model deposits too little, as continuous random walks are known to (docs/validation.md: by how much, and what was tried)."
+                    "! below the band by more than a factor 2: in the diffusion-impaction regime (tau+ about 0.3-3) the near-wall model deposits too little, as continuous random walks are known to (docs/validation.md); --near-wall wall-function takes the layer's transfer from Wood's correlation instead."
                 );
             } else if !below.is_empty() {
                 out!("! below the band by more than a factor 2.");
@@ -249,43 +323,71 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
             );
         }
     }
-    if let Some(path) = &args.plot {
-        // The correlations on 100 tau+ values across the study's and the measurements', each
-        // at the diameter and Schmidt number the study would give that tau+ (its particles,
-        // air and u*; in the Brownian range a measured point's own Schmidt number differs).
-        // The measurements' tau+ in standard air, whatever the study's.
-        let air = &study.scene.air;
-        let measured: Vec<(f64, f64)> =
-            SIPPOLA_NAZAROFF_2004.iter().map(|t| (t.tau_plus(&Air::standard()), t.v_plus)).collect();
-        let (lo, hi) = study
-            .tau_plus
-            .iter()
-            .chain(measured.iter().map(|(t, _)| t))
-            .fold((f64::INFINITY, 0.0f64), |(a, b), &t| (a.min(t), b.max(t)));
-        let model: Vec<(f64, f64)> = log_grid(lo, hi, 100)
-            .into_iter()
-            .filter_map(|tp| diameter_for_tau_plus(tp, study.density, air, u_star).map(|d| (tp, schmidt(d, air))))
-            .collect();
-        // depo's points with their standard errors; with no deposit, the 95 % upper bound.
+    let name = if study.scene.wall_function.is_some() { "depo, wall function" } else { "depo, resolved" };
+    Ok((name, rows))
+}
+
+/// The figure: each study's `V+` with its standard errors (with no deposit, the 95 % upper
+/// bound), Wood, Papavergos & Hedley, Sippola & Nazaroff's measurements, and with `peer`
+/// Code_Saturne's own deposition model on a wall-function mesh.
+fn draw(path: &std::path::Path, study: &ChannelStudy, drawn: &[Drawn], peer: bool) -> Result<(), Error> {
+    // The correlations on 100 tau+ values across the study's and the measurements', each
+    // at the diameter and Schmidt number the study would give that tau+ (its particles,
+    // air and u*; in the Brownian range a measured point's own Schmidt number differs).
+    // The measurements' tau+ in standard air, whatever the study's.
+    let air = &study.scene.air;
+    let u_star = study.scene.flow.friction_velocity().unwrap_or(0.0);
+    let measured: Vec<(f64, f64)> =
+        SIPPOLA_NAZAROFF_2004.iter().map(|t| (t.tau_plus(&Air::standard()), t.v_plus)).collect();
+    let (lo, hi) = study
+        .tau_plus
+        .iter()
+        .chain(measured.iter().map(|(t, _)| t))
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &t| (a.min(t), b.max(t)));
+    let model: Vec<(f64, f64)> = log_grid(lo, hi, 100)
+        .into_iter()
+        .filter_map(|tp| diameter_for_tau_plus(tp, study.density, air, u_star).map(|d| (tp, schmidt(d, air))))
+        .collect();
+    let mut series = Vec::new();
+    for (k, (name, rows)) in drawn.iter().enumerate() {
         let hit: Vec<&Row> = rows.iter().filter(|r| r.v_plus.upper_bound.is_none()).collect();
         let bounds: Vec<(f64, f64)> =
             rows.iter().filter_map(|r| r.v_plus.upper_bound.map(|b| (r.tau_plus, b))).collect();
-        let mut series = vec![
-            Series::markers("depo (+- 1 standard error)", hit.iter().map(|r| (r.tau_plus, r.v_plus.value)).collect())
-                .with_errors(hit.iter().map(|r| r.v_plus.error).collect()),
-            Series::line("Wood (1981)", model.iter().map(|&(tp, sc)| (tp, wood(tp, sc))).collect()),
-            Series::line(
-                "Papavergos & Hedley (1984)",
-                model.iter().map(|&(tp, sc)| (tp, papavergos_hedley(tp, sc))).collect(),
-            ),
-            Series::markers("Sippola & Nazaroff (2004), duct side wall, measured", measured),
-        ];
+        let color = if k == 0 { 0 } else { 5 + k };
+        series.push(
+            Series::markers(
+                format!("{name} (+- 1 standard error)"),
+                hit.iter().map(|r| (r.tau_plus, r.v_plus.value)).collect(),
+            )
+            .with_errors(hit.iter().map(|r| r.v_plus.error).collect())
+            .color(color),
+        );
         if !bounds.is_empty() {
-            series.push(Series::upper_bounds("depo: no deposit, 95 % upper bound", bounds).color(0));
+            series.push(Series::upper_bounds(format!("{name}: no deposit, 95 % upper bound"), bounds).color(color));
         }
-        plot::log_log(path, "Deposition in a turbulent channel", "tau+", "V+", &series)?;
-        eprintln!("figure: {}", path.display());
     }
+    series.extend([
+        Series::line("Wood (1981)", model.iter().map(|&(tp, sc)| (tp, wood(tp, sc))).collect()),
+        Series::line(
+            "Papavergos & Hedley (1984)",
+            model.iter().map(|&(tp, sc)| (tp, papavergos_hedley(tp, sc))).collect(),
+        ),
+        Series::markers("Sippola & Nazaroff (2004), duct side wall, measured", measured),
+    ]);
+    if peer {
+        for (model, name) in [
+            ("guingo-minier", "Code_Saturne 6.0.2, its deposition model (wall-function mesh)"),
+            ("no-model", "Code_Saturne 6.0.2, deposition walls, no model"),
+        ] {
+            let points = peer_points(model);
+            series.push(
+                Series::markers(name, points.iter().map(|&(t, v, _)| (t, v)).collect())
+                    .with_errors(points.iter().map(|&(_, _, e)| e).collect()),
+            );
+        }
+    }
+    plot::log_log(path, "Deposition in a turbulent channel", "tau+", "V+", &series)?;
+    eprintln!("figure: {}", path.display());
     Ok(())
 }
 
