@@ -353,7 +353,8 @@ fn draw(path: &std::path::Path, study: &ChannelStudy, drawn: &[Drawn], peer: boo
         let hit: Vec<&Row> = rows.iter().filter(|r| r.v_plus.upper_bound.is_none()).collect();
         let bounds: Vec<(f64, f64)> =
             rows.iter().filter_map(|r| r.v_plus.upper_bound.map(|b| (r.tau_plus, b))).collect();
-        let color = if k == 0 { 0 } else { 5 + k };
+        // Blue and red: the palette's later colours are the correlations', the measurements' and the peer's.
+        let color = k.min(1);
         series.push(
             Series::markers(
                 format!("{name} (+- 1 standard error)"),
