@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """The channel case's report: Code_Saturne's deposition velocity V+ = v_d / u* for each
-tau+, with its deposition model (Guingo & Minier 2008) and without it, beside Wood (1981).
+tau+, with its deposition model (Guingo & Minier 2008), without it, and with depo's
+deposition wall function, beside Wood (1981).
 
-    channel_report.py FLOW_RUN MODEL_RUN NO_MODEL_RUN OUT_CSV [TRANSIENT_S]
+    channel_report.py FLOW_RUN OUT_CSV TRANSIENT_S PARTICLE_RUN...
 
 reads the flow stage's channel_flow.csv and each particle stage's channel_counts.csv (the
 airborne particles of each class after every step). Over the window after TRANSIENT_S
-seconds (default 0.2 s) to the end of the run,
+seconds to the end of the run,
 
     v_d = (N_dep / (A T)) / (N_air_mean / V),   V+ = v_d / u*,
 
@@ -18,6 +19,13 @@ u* is the friction velocity the driving pressure gradient imposes (-dp/dx = rho 
 which the developed flow's walls carry whole). Wood's V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2
 (at most 0.13) takes Sc = nu / D with D = k T / (3 pi mu d), the Brownian diffusivity of
 Code_Saturne's particles (no slip correction, like their relaxation time).
+
+The wall function deposits the particles of the wall cells at the rate v_wf / layer, with
+v_wf what depo's Wood gives at the walls' wall-function friction velocity (the counts file's
+head): its V+ should be v_wf / u* times the wall cells' concentration over the mean, C_w / C
+(counted over the window). The report prints that expectation and the ratio of V+ to it, with
+the Poisson error of the deposits combined with the standard error of C_w / C (from the
+spread of its values over ten blocks of the window).
 """
 import csv
 import math
@@ -45,6 +53,8 @@ def read_counts(path):
                 meta["near_volume"] = float(line.split()[11])
             elif line.startswith("# diameters"):
                 meta["diameters"] = [float(x) for x in line.split()[2:]]
+            elif line.startswith("# wall function v_d"):
+                meta["wall_function_vd"] = [float(x) for x in line.split()[4:]]
             elif header is None:
                 header = line.split(",")
             else:
@@ -71,6 +81,8 @@ def measure(path, ustar, transient):
     for c, tau_plus in enumerate(classes):
         col = header.index("airborne_%g" % tau_plus)
         n = [r[col] for r in window]
+        if n[0] == 0:
+            continue  # a class not injected
         deposits = int(n[0] - n[-1])
         particle_time = sum(0.5 * (a + b) * dt for a, b in zip(n[:-1], n[1:]))
         v_d = deposits * meta["volume"] / (meta["area"] * particle_time)
@@ -88,7 +100,21 @@ def measure(path, ustar, transient):
         airborne = sum(n[1:])
         concentration_ratio = (near / meta["near_volume"]) / (airborne / meta["volume"])
         free_flight = concentration_ratio * 0.5 * abs_vz / near / ustar if near else float("nan")
+        # C_w / C over ten blocks of the window: the standard error of its mean.
+        near_col, blocks = header.index("near_%g" % tau_plus), []
+        size = (len(window) - 1) // 10
+        for b in range(10):
+            rows_b = window[1 + b * size: 1 + (b + 1) * size]
+            near_b = sum(r[near_col] for r in rows_b)
+            air_b = sum(r[col] for r in rows_b)
+            blocks.append((near_b / meta["near_volume"]) / (air_b / meta["volume"]))
+        mean_b = sum(blocks) / len(blocks)
+        ratio_error = math.sqrt(sum((x - mean_b) ** 2 for x in blocks) / (len(blocks) - 1) / len(blocks))
         d = meta["diameters"][c]
+        expected = expected_error = float("nan")
+        if "wall_function_vd" in meta:
+            expected = meta["wall_function_vd"][c] / ustar * concentration_ratio
+            expected_error = expected * ratio_error / concentration_ratio
         out.append({
             "tau_plus": tau_plus,
             "diameter_m": d,
@@ -102,12 +128,15 @@ def measure(path, ustar, transient):
             "airborne_end": int(n[-1]),
             "halves": halves,
             "near_ratio": concentration_ratio,
+            "near_ratio_error": ratio_error,
             "free_flight": free_flight,
+            "expected": expected,
+            "expected_error": expected_error,
         })
     return out, meta, span, lost
 
 
-def main(flow_run, model_run, no_model_run, out_csv, transient=0.2):
+def main(flow_run, out_csv, transient, *runs):
     with open(flow_run + "/channel_flow.csv") as f:
         flow = next(csv.DictReader(f))
     ustar = float(flow["ustar_imposed"])
@@ -116,18 +145,23 @@ def main(flow_run, model_run, no_model_run, out_csv, transient=0.2):
           % (ustar, float(flow["ustar_wall_functions"]), float(flow["bulk_velocity"]),
              float(flow["centre_velocity"]), float(flow["first_cell_yplus"]), ustar * 0.024 / NU))
     results = []
-    for run in (model_run, no_model_run):
+    for run in runs:
         rows, meta, span, lost = measure(run + "/channel_counts.csv", ustar, transient)
         print("%s: %d particles per class, window %.3f-%.3f s, %d lost by the tracking, "
               "u* seen by the deposition model %.3f m/s"
               % (meta["model"], meta["particles"], transient, transient + span, lost, meta["ustar_model"]))
         results += rows
     fields = ["tau_plus", "diameter_m", "model", "v_plus", "v_plus_error", "deposits", "wood",
-              "ustar_m_s", "particles"]
+              "ustar_m_s", "particles", "near_ratio", "near_ratio_error", "expected", "expected_error"]
     with open(out_csv, "w") as f:
         f.write(",".join(fields) + "\n")
         for r in results:
-            f.write("%g,%.4e,%s,%.4e,%.2e,%d,%.3e,%.3f,%d\n" % tuple(r[k] for k in fields))
+            line = "%g,%.4e,%s,%.4e,%.2e,%d,%.3e,%.3f,%d,%.4f,%.4f" % tuple(r[k] for k in fields[:11])
+            if math.isnan(r["expected"]):
+                line += ",,"
+            else:
+                line += ",%.4e,%.2e" % (r["expected"], r["expected_error"])
+            f.write(line + "\n")
     print("%6s %9s %14s %10s %8s %8s %9s %9s | %19s %8s %9s"
           % ("tau+", "d (um)", "model", "V+", "error", "deposits", "Wood", "V+/Wood",
              "V+ by window halves", "c1/c", "free V+"))
@@ -139,10 +173,22 @@ def main(flow_run, model_run, no_model_run, out_csv, transient=0.2):
                  r["near_ratio"], r["free_flight"]))
     print("c1/c: the wall cells' mean concentration over the channel's; free V+: c1/c <|v_z|> / (2 u*),"
           " the one-way flux of the wall cells' particles through a plane")
+    checks = [r for r in results if not math.isnan(r["expected"])]
+    if checks:
+        print("\nthe wall function: V+ against v_wf / u* x C_w / C (v_wf: depo's Wood at the walls' "
+              "wall-function u*)")
+        print("%6s %10s %8s %8s %15s %10s %17s" % ("tau+", "V+", "error", "deposits", "C_w/C", "expected",
+                                                   "V+/expected"))
+        for r in checks:
+            ratio = r["v_plus"] / r["expected"]
+            rel = math.sqrt(1.0 / max(r["deposits"], 1) + (r["near_ratio_error"] / r["near_ratio"]) ** 2)
+            print("%6g %10.3e %7.1f%% %8d %7.3f +- %.3f %10.3e %8.3f +- %.3f"
+                  % (r["tau_plus"], r["v_plus"], 100 * r["v_plus_error"] / r["v_plus"] if r["deposits"] else float("nan"),
+                     r["deposits"], r["near_ratio"], r["near_ratio_error"], r["expected"], ratio, ratio * rel))
     print("wrote", out_csv)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (5, 6):
+    if len(sys.argv) < 5:
         sys.exit(__doc__)
-    main(*sys.argv[1:5], *(float(x) for x in sys.argv[5:]))
+    main(sys.argv[1], sys.argv[2], float(sys.argv[3]), *sys.argv[4:])

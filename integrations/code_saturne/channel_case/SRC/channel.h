@@ -39,16 +39,20 @@ channel_diameter(int c)
 }
 
 /* Stages, from the file `channel_run` in DATA:
-     stage flow | model | no-model
+     stage flow | model | no-model | wall-function
      particles N        (per class; particle stages)
      flow_steps N       (steps of the flow stage, at CHANNEL_DT_FLOW)
      particle_steps N   (steps of a particle stage)
      particle_dt S      (a particle stage's time step, s; CHANNEL_DT_PARTICLES unless given)
+     classes T1,T2,...  (the tau+ of the classes injected; all of channel_tau_plus unless given)
    "flow" develops the flow from rest; "model" and "no-model" restart from it with
-   particles, Code_Saturne's deposition model (Guingo & Minier 2008) on or off. */
+   particles, Code_Saturne's deposition model (Guingo & Minier 2008) on or off;
+   "wall-function" restarts from it with depo's deposition wall function on both walls
+   (depo_code_saturne.c, compiled in with CHANNEL_DEPO defined) and the model off. */
 #define CHANNEL_FLOW 0
 #define CHANNEL_MODEL 1
 #define CHANNEL_NO_MODEL 2
+#define CHANNEL_WALL_FUNCTION 3
 
 #define CHANNEL_DT_FLOW 2e-3
 #define CHANNEL_DT_PARTICLES 2e-4
@@ -59,6 +63,7 @@ typedef struct {
   int flow_steps;
   int particle_steps;
   double particle_dt;
+  int injected[CHANNEL_CLASSES]; /* 1 for the classes injected */
 } channel_run_t;
 
 /* The run's settings, read once from `channel_run`. */

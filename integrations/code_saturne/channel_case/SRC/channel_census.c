@@ -7,7 +7,10 @@
    deposits and of particles lost by the tracking, for channel_report.py; and of each class,
    the particles in the wall cells (within one cell of either wall) and the sum of their
    speeds towards or away from the wall, |v_z|, for the report's free-flight check. Serial
-   runs only. */
+   runs only. In the wall-function stage it first applies depo's wall function for the step
+   (depo_cs_wall_function), and writes in the file's head the deposition velocity that depo's
+   Wood gives each class at the walls' mean wall-function friction velocity at the first
+   particle step (what the wall function then applies, the flow being developed). */
 
 #include "cs_defs.h"
 
@@ -29,6 +32,10 @@
 #include "cs_time_step.h"
 
 #include "channel.h"
+#ifdef CHANNEL_DEPO
+#include "depo.h"
+#include "depo_code_saturne.h"
+#endif
 
 BEGIN_C_DECLS
 
@@ -120,10 +127,16 @@ cs_user_lagr_extra_operations(const cs_real_t  dt[])
   const channel_run_t *run = channel_run();
   static FILE *f = NULL;
   int step = cs_glob_time_step->nt_cur - run->flow_steps;
+#ifdef CHANNEL_DEPO
+  if (run->stage == CHANNEL_WALL_FUNCTION)
+    depo_cs_wall_function();
+#endif
   if (f == NULL) {
     f = fopen("channel_counts.csv", "w");
     fprintf(f, "# stage %s, %ld particles per class, step %g s, ustar at the first particle step %.6f m/s\n",
-            run->stage == CHANNEL_MODEL ? "guingo-minier" : "no-model", run->particles,
+            run->stage == CHANNEL_MODEL ? "guingo-minier"
+            : run->stage == CHANNEL_WALL_FUNCTION ? "depo-wall-function" : "no-model",
+            run->particles,
             run->particle_dt, _mean_ustar());
     fprintf(f, "# wall area %.9g m^2, volume %.9g m^3, wall cells' volume %.9g m^3\n",
             2.0 * CHANNEL_LX * CHANNEL_LY, 2.0 * CHANNEL_H_HALF * CHANNEL_LX * CHANNEL_LY,
@@ -140,6 +153,24 @@ cs_user_lagr_extra_operations(const cs_real_t  dt[])
     for (int c = 0; c < CHANNEL_CLASSES; c++)
       fprintf(f, " %.6e", channel_diameter(c));
     fprintf(f, "\n");
+#ifdef CHANNEL_DEPO
+    if (run->stage == CHANNEL_WALL_FUNCTION) {
+      DepoAir air = {CHANNEL_T, 101325.0, CHANNEL_RHO, CHANNEL_MU};
+      double u[CHANNEL_CLASSES], d[CHANNEL_CLASSES], rho[CHANNEL_CLASSES], vd[CHANNEL_CLASSES];
+      for (int c = 0; c < CHANNEL_CLASSES; c++) {
+        u[c] = _mean_ustar();
+        d[c] = channel_diameter(c);
+        rho[c] = CHANNEL_DENSITY;
+      }
+      if (depo_deposition_velocity(DEPO_CORRELATION_WOOD, DEPO_SURFACE_WALL, &air, 0.0,
+                                   CHANNEL_CLASSES, u, d, rho, vd) != DEPO_OK)
+        bft_error(__FILE__, __LINE__, 0, "channel: %s\n", depo_last_error());
+      fprintf(f, "# wall function v_d");
+      for (int c = 0; c < CHANNEL_CLASSES; c++)
+        fprintf(f, " %.6e", vd[c]);
+      fprintf(f, "\n");
+    }
+#endif
   }
 
   long airborne[CHANNEL_CLASSES] = {0}, near[CHANNEL_CLASSES] = {0};

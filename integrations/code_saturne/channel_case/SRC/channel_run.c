@@ -2,6 +2,7 @@
 
 #include "cs_defs.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,14 +16,16 @@ BEGIN_C_DECLS
 const channel_run_t *
 channel_run(void)
 {
-  static channel_run_t run = {-1, 0, 0, 0, CHANNEL_DT_PARTICLES};
+  static channel_run_t run = {-1, 0, 0, 0, CHANNEL_DT_PARTICLES, {0}};
   if (run.stage >= 0)
     return &run;
+  for (int c = 0; c < CHANNEL_CLASSES; c++)
+    run.injected[c] = 1;
   FILE *f = fopen("channel_run", "r");
   if (f == NULL)
     bft_error(__FILE__, __LINE__, 0, "channel: no file channel_run in DATA\n");
-  char key[32], value[32];
-  while (fscanf(f, "%31s %31s", key, value) == 2) {
+  char key[32], value[128];
+  while (fscanf(f, "%31s %127s", key, value) == 2) {
     if (strcmp(key, "stage") == 0) {
       if (strcmp(value, "flow") == 0)
         run.stage = CHANNEL_FLOW;
@@ -30,8 +33,23 @@ channel_run(void)
         run.stage = CHANNEL_MODEL;
       else if (strcmp(value, "no-model") == 0)
         run.stage = CHANNEL_NO_MODEL;
+      else if (strcmp(value, "wall-function") == 0)
+        run.stage = CHANNEL_WALL_FUNCTION;
       else
-        bft_error(__FILE__, __LINE__, 0, "channel: stage \"%s\" is not flow, model or no-model\n", value);
+        bft_error(__FILE__, __LINE__, 0,
+                  "channel: stage \"%s\" is not flow, model, no-model or wall-function\n", value);
+    }
+    else if (strcmp(key, "classes") == 0) {
+      for (int c = 0; c < CHANNEL_CLASSES; c++)
+        run.injected[c] = 0;
+      for (char *t = strtok(value, ","); t != NULL; t = strtok(NULL, ",")) {
+        int c = 0;
+        while (c < CHANNEL_CLASSES && fabs(atof(t) - channel_tau_plus[c]) > 1e-9 * channel_tau_plus[c])
+          c++;
+        if (c == CHANNEL_CLASSES)
+          bft_error(__FILE__, __LINE__, 0, "channel: no class of tau+ %s (channel.h)\n", t);
+        run.injected[c] = 1;
+      }
     }
     else if (strcmp(key, "particles") == 0)
       run.particles = atol(value);

@@ -4,7 +4,8 @@
    and its deposition model (Guingo & Minier 2008) on or off. Brownian motion is left off
    in the bulk Langevin model (lamvbr = 0, the default): the deposition model carries its
    own Brownian term in the near-wall zone, and without the model it is negligible at
-   these sizes (Wood's diffusion term is below 1e-5 at tau+ >= 0.1). */
+   these sizes (Wood's diffusion term is below 1e-5 at tau+ >= 0.1). In the wall-function
+   stage the model is off and depo's wall function deposits the particles of the wall cells. */
 
 #include "cs_defs.h"
 #include "cs_lagr.h"

@@ -17,8 +17,12 @@ cs_user_lagr_volume_conditions(void)
   const channel_run_t *run = channel_run();
   cs_lagr_zone_data_t *vcs = cs_lagr_get_volume_conditions();
   const cs_zone_t *all = cs_volume_zone_by_id(0);
+  /* One injection set per class injected, numbered from 0 as Code_Saturne requires. */
+  int set_id = 0;
   for (int c = 0; c < CHANNEL_CLASSES; c++) {
-    cs_lagr_injection_set_t *set = cs_lagr_get_injection_set(vcs, all->id, c);
+    if (!run->injected[c])
+      continue;
+    cs_lagr_injection_set_t *set = cs_lagr_get_injection_set(vcs, all->id, set_id++);
     set->n_inject = run->particles;
     set->injection_frequency = 0; /* the first step only */
     set->velocity_profile = -1;   /* the fluid's velocity */
