@@ -3,8 +3,12 @@
 //! it recorded must be what depo's own `WallLaw` gives for the same incoming velocity and
 //! normal: the same outcome and the same outgoing velocity to round-off.
 //!
-//! Without Code_Saturne the test fails, saying what to install, unless `DEPO_SKIP_CODE_SATURNE`
-//! is 1: then it says SKIPPED on stderr (never a silent pass), as the example tests do.
+//! It also runs a small version of the channel case with depo's deposition wall function on
+//! both walls, and the deposition velocity it measures must be the one the wall function
+//! applies, times the wall cells' concentration over the mean as counted in the same run.
+//!
+//! Without Code_Saturne the tests fail, saying what to install, unless `DEPO_SKIP_CODE_SATURNE`
+//! is 1: then they say SKIPPED on stderr (never a silent pass), as the example tests do.
 
 use std::collections::HashMap;
 use std::process::Command;
@@ -37,27 +41,42 @@ fn zone_laws(log: &str) -> HashMap<u32, (String, WallLaw)> {
     laws
 }
 
-#[test]
-fn check_case_contacts_are_the_wall_law_to_round_off() {
+/// Whether Code_Saturne is there to run `test`; without it, false after a SKIPPED line when
+/// `DEPO_SKIP_CODE_SATURNE` is 1, and a failure otherwise.
+fn code_saturne_found(test: &str) -> bool {
     let found = Command::new("code_saturne").args(["info", "--version"]).output().is_ok_and(|o| o.status.success());
     if !found {
         if std::env::var_os("DEPO_SKIP_CODE_SATURNE").is_some_and(|v| v == "1") {
             // Written to the stream itself: the test harness captures `eprintln!`.
             use std::io::Write;
-            let line = "SKIPPED check_case_contacts_are_the_wall_law_to_round_off: code_saturne is not installed (DEPO_SKIP_CODE_SATURNE=1)\n";
+            let line = format!("SKIPPED {test}: code_saturne is not installed (DEPO_SKIP_CODE_SATURNE=1)\n");
             let _ = std::io::stderr().write_all(line.as_bytes());
-            return;
+            return false;
         }
         panic!(
             "code_saturne is not installed: install it (on Debian: apt-get install code-saturne \
              code-saturne-include; .ci/run does), or set DEPO_SKIP_CODE_SATURNE=1 to skip this test"
         );
     }
+    true
+}
+
+/// libdepo installed in a prefix of the test's own, under `work`.
+fn install_prefix(work: &std::path::Path) -> std::path::PathBuf {
     let lib = libdir().to_path_buf();
-    let work = lib.join("code-saturne");
     let prefix = work.join("prefix");
-    let integration = root().join("integrations/code_saturne");
     run(Command::new("bash").arg(root().join("crates/capi/install.sh")).arg(&prefix).arg(&lib));
+    prefix
+}
+
+#[test]
+fn check_case_contacts_are_the_wall_law_to_round_off() {
+    if !code_saturne_found("check_case_contacts_are_the_wall_law_to_round_off") {
+        return;
+    }
+    let work = libdir().join("code-saturne");
+    let prefix = install_prefix(&work);
+    let integration = root().join("integrations/code_saturne");
     let case = work.join("check");
     run(Command::new("bash")
         .arg(integration.join("run_case.sh"))
@@ -119,4 +138,58 @@ fn check_case_contacts_are_the_wall_law_to_round_off() {
         .map(|l| l.split_whitespace().next().unwrap().parse::<usize>().unwrap())
         .sum();
     assert_eq!(deposited, counts[1], "Code_Saturne's deposited count against depo's captures");
+}
+
+/// The wall function in the channel case, small: the flow developed as in the full case, then
+/// 10000 particles of each of two classes, `tau+` 3 (the diffusion-impaction regime, where
+/// Wood's `V+` rises as `tau+^2`) and 30 (Wood's plateau), for 0.3 s, the first 0.05 s left
+/// out. A particle in a wall cell deposits at the rate `v_wf / layer`, so the walls take the
+/// flux `v_wf C_w`: `V+ = v_wf / u* x C_w / C`, with `C_w / C` the wall cells' concentration
+/// over the mean, counted in the same run. Measured and expected must agree within three
+/// combined standard errors (the deposits' Poisson error and the block error of `C_w / C`).
+/// The only bias, the second-order term of `1 - exp(-v_wf dt / layer)` and the census counting
+/// the wall cells after the step's deposits, is below 0.3 % here: no tolerance is added.
+#[test]
+fn channel_wall_function_deposits_what_the_correlation_gives() {
+    if !code_saturne_found("channel_wall_function_deposits_what_the_correlation_gives") {
+        return;
+    }
+    let start = std::time::Instant::now();
+    let work = libdir().join("code-saturne-wall-function");
+    let prefix = install_prefix(&work);
+    let channel = work.join("channel");
+    let out = run(Command::new("bash")
+        .arg(root().join("integrations/code_saturne/run_channel.sh"))
+        .arg(&channel)
+        .env("DEPO_PREFIX", &prefix)
+        .env("CHANNEL_STAGES", "wall-function")
+        .env("CHANNEL_CLASSES", "3,30")
+        .env("CHANNEL_WF_PARTICLES", "10000")
+        .env("CHANNEL_PARTICLE_STEPS", "1500")
+        .env("CHANNEL_TRANSIENT", "0.05"));
+    eprintln!("{}", String::from_utf8_lossy(&out.stdout));
+    let csv = std::fs::read_to_string(channel.join("channel_peer.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let mut checked = 0;
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f[col("model")], "depo-wall-function", "{line}");
+        let num = |name: &str| f[col(name)].parse::<f64>().unwrap_or_else(|_| panic!("{name} in {line}"));
+        let (v_plus, v_error, expected, e_error) =
+            (num("v_plus"), num("v_plus_error"), num("expected"), num("expected_error"));
+        let deposits = num("deposits");
+        assert!(deposits >= 100.0, "too few deposits to test: {line}");
+        let combined = (v_error * v_error + e_error * e_error).sqrt();
+        assert!(
+            (v_plus - expected).abs() <= 3.0 * combined,
+            "tau+ {}: V+ {v_plus:.4e} against v_wf/u* x C_w/C = {expected:.4e} (3 errors: {:.2e}): {line}",
+            f[col("tau_plus")],
+            3.0 * combined
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 2, "both classes reported");
+    eprintln!("Code_Saturne channel with the wall function: {:.0} s", start.elapsed().as_secs_f64());
 }
