@@ -111,10 +111,12 @@ def measure(path, ustar, transient):
         mean_b = sum(blocks) / len(blocks)
         ratio_error = math.sqrt(sum((x - mean_b) ** 2 for x in blocks) / (len(blocks) - 1) / len(blocks))
         d = meta["diameters"][c]
-        expected = expected_error = float("nan")
+        expected = expected_error = expected_deposits = float("nan")
         if "wall_function_vd" in meta:
             expected = meta["wall_function_vd"][c] / ustar * concentration_ratio
             expected_error = expected * ratio_error / concentration_ratio
+            # The deposits the wall function should give in the window: what V+ = expected means.
+            expected_deposits = expected * ustar * meta["area"] * particle_time / meta["volume"]
         out.append({
             "tau_plus": tau_plus,
             "diameter_m": d,
@@ -132,6 +134,7 @@ def measure(path, ustar, transient):
             "free_flight": free_flight,
             "expected": expected,
             "expected_error": expected_error,
+            "expected_deposits": expected_deposits,
         })
     return out, meta, span, lost
 
@@ -177,14 +180,16 @@ def main(flow_run, out_csv, transient, *runs):
     if checks:
         print("\nthe wall function: V+ against v_wf / u* x C_w / C (v_wf: depo's Wood at the walls' "
               "wall-function u*)")
-        print("%6s %10s %8s %8s %15s %10s %17s" % ("tau+", "V+", "error", "deposits", "C_w/C", "expected",
-                                                   "V+/expected"))
+        print("%6s %10s %8s %8s %15s %10s %9s %17s" % ("tau+", "V+", "error", "deposits", "C_w/C", "expected",
+                                                        "deposits", "V+/expected"))
         for r in checks:
             ratio = r["v_plus"] / r["expected"]
             rel = math.sqrt(1.0 / max(r["deposits"], 1) + (r["near_ratio_error"] / r["near_ratio"]) ** 2)
-            print("%6g %10.3e %7.1f%% %8d %7.3f +- %.3f %10.3e %8.3f +- %.3f"
+            print("%6g %10.3e %7.1f%% %8d %7.3f +- %.3f %10.3e %9.1f %8.3f +- %.3f"
                   % (r["tau_plus"], r["v_plus"], 100 * r["v_plus_error"] / r["v_plus"] if r["deposits"] else float("nan"),
-                     r["deposits"], r["near_ratio"], r["near_ratio_error"], r["expected"], ratio, ratio * rel))
+                     r["deposits"], r["near_ratio"], r["near_ratio_error"], r["expected"],
+                     r["expected_deposits"], ratio, ratio * rel))
+        print("expected deposits: the wall function's v_wf C_w over the window, in particles")
     print("wrote", out_csv)
 
 
