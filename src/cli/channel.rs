@@ -49,21 +49,25 @@ pub enum NearWallChoice {
 /// (integrations/code_saturne/channel_case: its results as run there).
 const CODE_SATURNE_PEER: &str = include_str!("../../integrations/code_saturne/channel_peer.csv");
 
-/// The peer's `(tau+, V+, standard error)` for one `model` of its CSV (`guingo-minier`,
-/// `no-model`).
-fn peer_points(model: &str) -> Vec<(f64, f64, f64)> {
+/// One `tau+` of the peer's channel case: `tau+`, `V+`, its standard error and Wood's `V+`.
+type PeerPoint = (f64, f64, f64, f64);
+
+/// The peer's points for one `model` of its CSV (`guingo-minier`, `no-model`,
+/// `depo-wall-function`).
+fn peer_points(model: &str) -> Vec<PeerPoint> {
     let mut lines = CODE_SATURNE_PEER.lines();
     let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
     let column = |name: &str| header.iter().position(|h| *h == name);
-    let (Some(t), Some(m), Some(v), Some(e)) =
-        (column("tau_plus"), column("model"), column("v_plus"), column("v_plus_error"))
+    let (Some(t), Some(m), Some(v), Some(e), Some(w)) =
+        (column("tau_plus"), column("model"), column("v_plus"), column("v_plus_error"), column("wood"))
     else {
         return Vec::new();
     };
+    let number = |f: &[&str], i: usize| f.get(i)?.parse::<f64>().ok();
     lines
         .map(|l| l.split(',').collect::<Vec<_>>())
         .filter(|f| f.get(m) == Some(&model))
-        .filter_map(|f| Some((f.get(t)?.parse().ok()?, f.get(v)?.parse().ok()?, f.get(e)?.parse().ok()?)))
+        .filter_map(|f| Some((number(&f, t)?, number(&f, v)?, number(&f, e)?, number(&f, w)?)))
         .collect()
 }
 
@@ -139,10 +143,51 @@ pub fn run(args: &ChannelArgs) -> Result<(), Error> {
     for study in &studies {
         figure.push(run_one(args, study, &source)?);
     }
+    let all = args.near_wall == Some(NearWallChoice::All);
+    if all && args.format == Format::Table {
+        peer_table();
+    }
     if let Some(path) = &args.plot {
-        draw(path, &studies[0], &figure, args.near_wall == Some(NearWallChoice::All))?;
+        draw(path, &studies[0], &figure, all)?;
     }
     Ok(())
+}
+
+/// The models of the peer's CSV with their names, in the table's and the figure's order.
+const PEER_MODELS: [(&str, &str); 3] = [
+    ("guingo-minier", "Code_Saturne 6.0.2, its deposition model (wall-function mesh)"),
+    ("no-model", "Code_Saturne 6.0.2, deposition walls, no model"),
+    ("depo-wall-function", "Code_Saturne 6.0.2 with depo's wall function (Wood)"),
+];
+
+/// Code_Saturne's `V+` beside Wood, as measured in its channel case.
+fn peer_table() {
+    out!(
+        "Code_Saturne 6.0.2 in a channel meshed with wall functions (k-epsilon, first cell at y+ 40, Re_tau 479, u* = 0.30 m/s; integrations/code_saturne), V+:"
+    );
+    out!(
+        "{:>8}  {:>26}  {:>26}  {:>26}  {:>9}",
+        "tau+",
+        "its deposition model",
+        "no model",
+        "depo's wall function",
+        "Wood"
+    );
+    let columns: Vec<Vec<PeerPoint>> = PEER_MODELS.iter().map(|(m, _)| peer_points(m)).collect();
+    for &(tau_plus, _, _, wood) in &columns[0] {
+        let cell = |c: &[PeerPoint]| {
+            c.iter().find(|p| p.0 == tau_plus).map_or("-".to_string(), |&(_, v, e, _)| format!("{v:.2e} +- {e:.1e}"))
+        };
+        out!(
+            "{:>8}  {:>26}  {:>26}  {:>26}  {:>9.2e}",
+            tau_plus_cell(tau_plus),
+            cell(&columns[0]),
+            cell(&columns[1]),
+            cell(&columns[2]),
+            wood
+        );
+    }
+    out!("The wall function's V+ there is Wood's times Code_Saturne's own wall-cell concentration over the mean, 1.3-1.9 (integrations/code_saturne/README.md).");
 }
 
 /// What a study's figure draws of it: its name and rows.
@@ -376,14 +421,13 @@ fn draw(path: &std::path::Path, study: &ChannelStudy, drawn: &[Drawn], peer: boo
         Series::markers("Sippola & Nazaroff (2004), duct side wall, measured", measured),
     ]);
     if peer {
-        for (model, name) in [
-            ("guingo-minier", "Code_Saturne 6.0.2, its deposition model (wall-function mesh)"),
-            ("no-model", "Code_Saturne 6.0.2, deposition walls, no model"),
-        ] {
-            let points = peer_points(model);
+        for (model, name) in PEER_MODELS {
+            // Points whose error is above 30 % (fewer than about ten deposits: the wall
+            // function's at tau+ 0.1-0.3) say little; the table shows them.
+            let points: Vec<PeerPoint> = peer_points(model).into_iter().filter(|p| p.2 < 0.3 * p.1).collect();
             series.push(
-                Series::markers(name, points.iter().map(|&(t, v, _)| (t, v)).collect())
-                    .with_errors(points.iter().map(|&(_, _, e)| e).collect()),
+                Series::markers(name, points.iter().map(|&(t, v, ..)| (t, v)).collect())
+                    .with_errors(points.iter().map(|&(_, _, e, _)| e).collect()),
             );
         }
     }
@@ -418,7 +462,20 @@ fn tau_plus_cell(tau_plus: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::tau_plus_cell;
+    use super::{peer_points, tau_plus_cell, PEER_MODELS};
+
+    #[test]
+    fn the_peer_s_stored_points_are_read_whole() {
+        for (model, _) in PEER_MODELS {
+            let points = peer_points(model);
+            let tau_plus: Vec<f64> = points.iter().map(|p| p.0).collect();
+            assert_eq!(tau_plus, [0.1, 0.3, 1.0, 3.0, 10.0, 30.0], "{model}");
+            assert!(points.iter().all(|&(_, v, e, w)| v > 0.0 && e > 0.0 && w > 0.0), "{model}: {points:?}");
+        }
+        // Code_Saturne's own model: 2150 times Wood at tau+ 0.1, as its README says.
+        let (_, v, _, wood) = peer_points("guingo-minier")[0];
+        assert!((v / wood / 2150.0 - 1.0).abs() < 0.01, "{}", v / wood);
+    }
 
     #[test]
     fn small_tau_plus_reads_in_exponent_form() {

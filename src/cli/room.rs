@@ -220,7 +220,8 @@ struct Row {
     particle_steps: u64,
     /// Particles run for this size.
     particles: usize,
-    /// "excursions" or "plain".
+    /// "excursions", "wall-function" (deposits from Lai & Nazaroff's rate within the walls'
+    /// layers; docs/tracker.md) or "plain".
     method: &'static str,
     /// With excursions: the share of their weight given up at their longest duration.
     excursions_truncated: Option<f64>,
@@ -519,7 +520,11 @@ fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtration) -> R
         },
         particle_steps: p.particle_steps,
         particles: p.particles,
-        method: if p.excursions.is_some() { "excursions" } else { "plain" },
+        method: match (&p.excursions, &scene.wall_function) {
+            (Some(_), _) => "excursions",
+            (None, Some(_)) => "wall-function",
+            (None, None) => "plain",
+        },
         excursions_truncated: p.excursions,
         longest_excursion_s: p.longest_excursion,
         class_sampling: p.class_sampling.map(|[floor, ceiling, walls, furnishings]| ClassSampling {
@@ -879,7 +884,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 let method = match (r.excursions_truncated, r.longest_excursion_s) {
                     (Some(t), Some(s)) if t > 1e-3 => format!("excursions ({:.1} % at {s:.0} s)", 100.0 * t),
                     (Some(_), _) => "excursions".to_string(),
-                    (None, _) => "plain".to_string(),
+                    (None, _) => r.method.to_string(),
                 };
                 out!(
                     "{:>8.3}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>20} {:>7.3} {:>6.2}{}  {method}",
