@@ -238,6 +238,13 @@ struct Row {
     deposited: Deposited,
     /// Where the released particles are at the end: per surface, exhausted, airborne.
     release: Release,
+    /// The start of this size's averaging window, s: the study's, or 0 where every particle
+    /// had left the air before it opened (its figures are then over the release from its
+    /// start, not a well-mixed room's rates).
+    averaged_from_s: f64,
+    /// When half and when nine tenths of the released particles had deposited, s (null where
+    /// the run ended first).
+    deposited_by_s: [Option<f64>; 2],
     /// `beta` fitted to the decay curve as decay experiments fit it; absent when fewer than 3
     /// sample times qualify.
     decay_fit: Option<DecayFitRow>,
@@ -520,6 +527,8 @@ fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtration) -> R
         },
         particle_steps: p.particle_steps,
         particles: p.particles,
+        averaged_from_s: p.averaged_from,
+        deposited_by_s: p.deposited_by,
         method: match (&p.excursions, &scene.wall_function) {
             (Some(_), _) => "excursions",
             (None, Some(_)) => "wall-function",
@@ -886,6 +895,9 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                     (Some(_), _) => "excursions".to_string(),
                     (None, _) => r.method.to_string(),
                 };
+                // Averaged from the release: every particle had left before the window.
+                let method =
+                    if r.averaged_from_s == 0.0 && study.transient > 0.0 { format!("{method} +") } else { method };
                 out!(
                     "{:>8.3}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>20} {:>7.3} {:>6.2}{}  {method}",
                     r.diameter_um,
@@ -917,6 +929,11 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 100.0 * studies::LONGEST_SHARE,
                 1 << studies::LONGEST_DOUBLINGS
             );
+            if rows.iter().any(|r| r.averaged_from_s == 0.0) && study.transient > 0.0 {
+                out!(
+                    "+ every particle left the air before the averaging window opened: averaged over the release from t = 0 (what became of it, not a well-mixed room's rates; the times by which half and 90 % had deposited are in the release table)."
+                );
+            }
             if rows.iter().any(|r| !r.unresolved.is_empty()) {
                 out!(
                     "* unresolved: no deposit event, or, where Lai & Nazaroff give at least {:.0e} m/s, a relative standard error or a share given up above {} %.",
@@ -1070,7 +1087,7 @@ fn decay_table(rows: &[Row], ach: f64, openings: bool) {
          released."
     );
     out!(
-        "{:>8}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20}",
+        "{:>8}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20}  {:>28}",
         "d (um)",
         "beta fitted (1/h)",
         "z",
@@ -1086,7 +1103,8 @@ fn decay_table(rows: &[Row], ach: f64, openings: bool) {
         },
         "exhausted",
         "airborne",
-        "floor (ug/m2 per mg)"
+        "floor (ug/m2 per mg)",
+        "50 % / 90 % deposited by (s)"
     );
     for (i, r) in rows.iter().enumerate() {
         density_heading(rows, i);
@@ -1101,7 +1119,7 @@ fn decay_table(rows: &[Row], ach: f64, openings: bool) {
         let release = &r.release;
         let pct = |s: &Share| format!("{:.1}", 100.0 * s.share);
         out!(
-            "{:>8.3}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20.3e}",
+            "{:>8.3}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20.3e}  {:>28}",
             r.diameter_um,
             fitted,
             z,
@@ -1113,7 +1131,8 @@ fn decay_table(rows: &[Row], ach: f64, openings: bool) {
             pct(&release.exhausted),
             pct(&release.airborne),
             // kg/m^2 per kg released, for 1 mg released, in ug/m^2.
-            release.floor.loading_per_m2.unwrap_or(0.0) * 1e3
+            release.floor.loading_per_m2.unwrap_or(0.0) * 1e3,
+            r.deposited_by_s.map(|t| t.map_or("-".to_string(), |t| format!("{t:.0}"))).join(" / ")
         );
     }
     out!(

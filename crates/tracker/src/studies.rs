@@ -332,6 +332,25 @@ pub struct RoomPoint {
     /// Where the tracked particles are at the end of the run (with ventilation, the exhausted
     /// ones too): the mass balance a size distribution's is summed from.
     pub balance: Balance,
+    /// The start of this size's averaging window, s: the study's, or 0 where every particle
+    /// had left the air before it opened (fast-settling sizes), whose figures are then over
+    /// the release from its start: what became of it, not a well-mixed room's steady rates.
+    pub averaged_from: f64,
+    /// When half and when nine tenths of the released particles had deposited, s; `None`
+    /// where the run ended first.
+    pub deposited_by: [Option<f64>; 2],
+}
+
+/// The time by which `share` of `records` had deposited, s; `None` if they never did.
+fn deposited_by(records: &[crate::Record], share: f64) -> Option<f64> {
+    let mut times: Vec<f64> =
+        records.iter().filter(|r| matches!(r.fate, crate::Fate::Deposited(_))).map(|r| r.time).collect();
+    let needed = (share * records.len() as f64).ceil() as usize;
+    if needed == 0 || times.len() < needed {
+        return None;
+    }
+    times.sort_by(f64::total_cmp);
+    Some(times[needed - 1])
 }
 
 /// One furnishing's figures in a room study.
@@ -516,6 +535,17 @@ impl RoomStudy {
                     _ => break (scene, result),
                 }
             };
+            // Every particle gone before the window opened (they settle within it): the size
+            // is run again, plainly, averaged over the release from its start.
+            let exposure: f64 = result.particles.iter().map(|p| p.exposure).sum();
+            let (scene, result) = if exposure > 0.0 {
+                (scene, result)
+            } else {
+                let mut from_release = plain.clone();
+                from_release.average_from = 0.0;
+                let result = run(&from_release, &injection).map_err(for_diameters)?;
+                (from_release, result)
+            };
             let v = |o| result.deposition_velocity(&result.walls_facing(o));
             let balance = result.balance();
             let beta = result.loss_rate();
@@ -597,6 +627,8 @@ impl RoomStudy {
                 decay,
                 decay_fit,
                 balance,
+                averaged_from: scene.average_from,
+                deposited_by: [0.5, 0.9].map(|share| deposited_by(&result.records, share)),
             });
             progress(i + 1);
         }
