@@ -245,6 +245,9 @@ struct Row {
     /// When half and when nine tenths of the released particles had deposited, s (null where
     /// the run ended first).
     deposited_by_s: [Option<f64>; 2],
+    /// The steady state under a continuous source of this size (null where nothing removes
+    /// the particles).
+    steady: Option<Steady>,
     /// `beta` fitted to the decay curve as decay experiments fit it; absent when fewer than 3
     /// sample times qualify.
     decay_fit: Option<DecayFitRow>,
@@ -399,6 +402,30 @@ impl Share {
     }
 }
 
+/// The steady state under a continuous source of one size (`depo_tracker::steady`).
+#[derive(Serialize)]
+struct Steady {
+    /// Mean time an emitted particle stays in the air, h: the steady airborne number per
+    /// particle emitted an hour.
+    residence_h: Measured,
+    /// The share of the source ending on the floor, ceiling, walls, furnishings, exhausted.
+    floor: f64,
+    ceiling: f64,
+    walls: f64,
+    furnishings: f64,
+    exhausted: f64,
+    /// Steady deposition velocities, m/s.
+    floor_velocity: Measured,
+    ceiling_velocity: Measured,
+    walls_velocity: Measured,
+    /// The share of the residence time taken from the room's late rates beyond the run.
+    beyond_run: f64,
+    /// With ventilation: the steady indoor/outdoor ratio, the entering outdoor particles' rate
+    /// times their mean residence.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    indoor_outdoor: Option<Measured>,
+}
+
 /// The release at the end of the run.
 #[derive(Serialize)]
 struct Release {
@@ -529,6 +556,23 @@ fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtration) -> R
         particles: p.particles,
         averaged_from_s: p.averaged_from,
         deposited_by_s: p.deposited_by,
+        steady: p.steady.map(|st| {
+            let [floor, ceiling, walls, furnishings, exhausted] = st.fates;
+            let hours = |e: depo::tracker::Estimate| Estimate { value: e.value / 3600.0, error: e.error / 3600.0, ..e };
+            Steady {
+                residence_h: hours(st.residence).into(),
+                floor,
+                ceiling,
+                walls,
+                furnishings,
+                exhausted,
+                floor_velocity: st.deposition_velocity[0].into(),
+                ceiling_velocity: st.deposition_velocity[1].into(),
+                walls_velocity: st.deposition_velocity[2].into(),
+                beyond_run: st.beyond_run,
+                indoor_outdoor: p.steady_indoor_outdoor.map(Into::into),
+            }
+        }),
         method: match (&p.excursions, &scene.wall_function) {
             (Some(_), _) => "excursions",
             (None, Some(_)) => "wall-function",
@@ -964,6 +1008,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 study.scene.duration
             );
             decay_table(&rows, study.scene.exchange_rate() * 3600.0, !study.scene.openings.is_empty());
+            steady_table(&rows);
         }
     }
     if let (Format::Table, Some(d)) = (args.format, &distribution) {
@@ -1146,6 +1191,59 @@ fn decay_table(rows: &[Row], ach: f64, openings: bool) {
              draws the air near it, older or fresher than the room's mean, so the decay less a holds that difference \
              too and is no deposition rate; the study's beta (deposits over airborne time) is (docs/tracker.md, \
              \"What it means\")."
+        );
+    }
+}
+
+/// The steady state under a continuous source, per size (`depo_tracker::steady`).
+fn steady_table(rows: &[Row]) {
+    out!("");
+    out!(
+        "Under a continuous source (emitted uniformly over the room at a constant rate: indoors, or outdoor air \
+         infiltrating), at steady state, from the release followed from t = 0: the mean time in the air (the airborne \
+         number per particle emitted an hour), the deposition velocities (flux over the mean concentration), the share \
+         of the source ending in each place, % (and the share of the time in the air from beyond the run, the room's \
+         late rates'), and with ventilation C_in/C_out."
+    );
+    let ventilated = rows.iter().any(|r| r.steady.as_ref().is_some_and(|s| s.indoor_outdoor.is_some()));
+    out!(
+        "{:>8}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7}{}",
+        "d (um)",
+        "time in air (h)",
+        "floor (m/s)",
+        "ceiling (m/s)",
+        "walls (m/s)",
+        "floor",
+        "ceiling",
+        "walls",
+        "furnish",
+        "exhausted",
+        "beyond",
+        if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
+    );
+    for (i, r) in rows.iter().enumerate() {
+        density_heading(rows, i);
+        let Some(st) = &r.steady else {
+            out!("{:>8.3}  nothing removes these particles: no steady state", r.diameter_um);
+            continue;
+        };
+        let pct = |x: f64| format!("{:.1}", 100.0 * x);
+        out!(
+            "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7}{}",
+            r.diameter_um,
+            format!("{:.3} +- {:.3}", st.residence_h.value, st.residence_h.error),
+            st.floor_velocity.cell(),
+            st.ceiling_velocity.cell(),
+            st.walls_velocity.cell(),
+            pct(st.floor),
+            pct(st.ceiling),
+            pct(st.walls),
+            pct(st.furnishings),
+            pct(st.exhausted),
+            pct(st.beyond_run),
+            st.indoor_outdoor
+                .as_ref()
+                .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
         );
     }
 }

@@ -124,9 +124,17 @@ impl Filtration {
     /// (1/s), penetration `P` and deposition loss rate `beta` (1/s) (see the module docs).
     #[must_use]
     pub fn indoor_outdoor(&self, d: f64, a: f64, penetration: f64, beta: f64) -> f64 {
+        self.entering(d, a, penetration) / (a + self.removal(d) + beta)
+    }
+
+    /// The rate at which outdoor particles of diameter `d` (m) enter per unit volume and
+    /// outdoor concentration, `P (1 - s) a + (1 - eta_s) s a`, 1/s, for air exchange `a` (1/s)
+    /// and penetration `P`: the source whose steady indoor/outdoor ratio is this times the
+    /// particles' mean residence time ([`crate::steady`]).
+    #[must_use]
+    pub fn entering(&self, d: f64, a: f64, penetration: f64) -> f64 {
         let s = self.supply_share;
-        let source = penetration * (1.0 - s) * a + (1.0 - self.supply_filter.at(d)) * s * a;
-        source / (a + self.removal(d) + beta)
+        penetration * (1.0 - s) * a + (1.0 - self.supply_filter.at(d)) * s * a
     }
 
     /// The derivative of [`Filtration::indoor_outdoor`] with respect to `beta`, for carrying

@@ -38,6 +38,8 @@
 //! - [`efficiency`]: run time against statistical error of the studies' variance reduction,
 //!   beside the plain tracking it replaces.
 //! - [`studies`]: the room and channel studies, runs beside their correlations.
+//! - [`steady`]: the steady state under a continuous source (indoor emission or
+//!   infiltration), read off a release followed from its start.
 //! - [`distribution`]: size distributions (lognormal modes by number or mass, measured size
 //!   classes) through a room study: the mass deposited per surface, exhausted and airborne,
 //!   for all of it and for PM2.5 and PM10.
@@ -82,6 +84,7 @@ mod noise;
 pub mod openings;
 pub mod run;
 pub mod scene;
+pub mod steady;
 pub mod studies;
 mod track;
 pub mod wall_function;

@@ -27,6 +27,7 @@ use crate::flow::Flow;
 use crate::geometry::{Geometry, Orientation};
 use crate::run::{run, run_more, Balance, Estimate, Run};
 use crate::scene::{Injection, Scene, SceneError, Scheme, SizeDistribution};
+use crate::steady::SteadyState;
 use crate::track::WallTally;
 
 /// A room study: one run per diameter in `scene` (a room with a turbulent-room flow).
@@ -339,6 +340,12 @@ pub struct RoomPoint {
     /// When half and when nine tenths of the released particles had deposited, s; `None`
     /// where the run ended first.
     pub deposited_by: [Option<f64>; 2],
+    /// The steady state under a continuous source of this size ([`crate::steady`]); `None`
+    /// where nothing removes the particles.
+    pub steady: Option<SteadyState>,
+    /// With ventilation, the steady indoor/outdoor ratio from it: the entering outdoor
+    /// particles' rate times their mean residence time.
+    pub steady_indoor_outdoor: Option<Estimate>,
 }
 
 /// The time by which `share` of `records` had deposited, s; `None` if they never did.
@@ -563,6 +570,34 @@ impl RoomStudy {
                     upper_bound: (ratio + 2.0 * slope * beta.error).min(f.indoor_outdoor(d, a, self.penetration, 0.0)),
                 }
             });
+            // The late rates (1/s) at which an airborne particle ends in each steady fate.
+            let late = |surfaces: &[usize]| {
+                let area: f64 = surfaces.iter().map(|&w| result.walls[w].area).sum();
+                let v = result.deposition_velocity(surfaces).value;
+                if area > 0.0 && v.is_finite() {
+                    v * area / result.volume
+                } else {
+                    0.0
+                }
+            };
+            let furnished: Vec<usize> = result.walls.iter().filter(|w| w.furnishing.is_some()).map(|w| w.id).collect();
+            let lambda = [
+                late(&result.walls_facing(Orientation::Floor)),
+                late(&result.walls_facing(Orientation::Ceiling)),
+                late(&result.walls_facing(Orientation::Wall)),
+                late(&furnished),
+                scene.exchange_rate(),
+            ];
+            let steady = SteadyState::from_release(&result, lambda);
+            let steady_indoor_outdoor = steady.filter(|_| a > 0.0).map(|s| {
+                let q = f.entering(d, a, self.penetration);
+                Estimate {
+                    value: q * s.residence.value,
+                    error: q * s.residence.error,
+                    events: s.residence.events,
+                    upper_bound: f64::NAN,
+                }
+            });
             let decay = result.decay_curve(DECAY_INTERVALS);
             let decay_fit = result.decay_fit(&decay, scene.exchange_rate());
             points.push(RoomPoint {
@@ -629,6 +664,8 @@ impl RoomStudy {
                 balance,
                 averaged_from: scene.average_from,
                 deposited_by: [0.5, 0.9].map(|share| deposited_by(&result.records, share)),
+                steady,
+                steady_indoor_outdoor,
             });
             progress(i + 1);
         }

@@ -712,3 +712,64 @@ fn a_size_that_settles_before_the_window_is_averaged_from_the_release() {
         assert!((most / (2.25 / v_s) - 1.0).abs() < 0.25, "{most}");
     }
 }
+
+/// The steady state under a continuous source, against independent calculations: between
+/// mirrors with air exchange `a` nothing deposits and a particle leaves at the end of the
+/// step in which its exponential exhaust time falls, so its mean time in the air is
+/// `dt / (1 - exp(-a dt))` and `C_in/C_out` the penetration times `a` times that (no gravity,
+/// on which a settling particle would come to rest on a mirror floor); 100 um
+/// particles (Stokes settling `rho_p d^2 g / (18 mu)` = 0.30 m/s, far above the room's
+/// turbulence) fall from a uniform start through the 2.5 m room, `E[T] = H / (2 v_s)`, all
+/// of them onto the floor.
+#[test]
+fn the_steady_state_under_a_continuous_source_matches_independent_calculations() {
+    let a = 2.0 / 3600.0;
+    let mut study = RoomStudy { diameters: vec![1e-6], count: 2000, target_error: None, ..RoomStudy::default() };
+    study.scene = study.scene.with_walls(WallBehaviour::Reflect);
+    // Without gravity: a settling particle comes to rest on a mirror floor.
+    study.scene.gravity = [0.0; 3];
+    study.scene.air_exchange = a;
+    study.scene.duration = 7200.0;
+    study.excursions = false;
+    study.penetration = 0.8;
+    let p = &study.run(|_| {}).unwrap()[0];
+    let steady = p.steady.expect("ventilated");
+    let dt = study.scene.dt;
+    let residence = dt / -(-a * dt).exp_m1();
+    let io = p.steady_indoor_outdoor.unwrap();
+    println!(
+        "mirrors: E[T] {:.1} +- {:.1} s against {residence:.1}; C_in/C_out {:.4} +- {:.4} against {:.4}",
+        steady.residence.value,
+        steady.residence.error,
+        io.value,
+        io.error,
+        0.8 * a * residence
+    );
+    assert!((steady.residence.value - residence).abs() < 3.0 * steady.residence.error, "{steady:?}");
+    assert!((io.value - 0.8 * a * residence).abs() < 3.0 * io.error, "{io:?}");
+    assert!((steady.fates[4] - 1.0).abs() < 1e-12, "all exhausted: {:?}", steady.fates);
+
+    let coarse = RoomStudy {
+        diameters: vec![100e-6],
+        count: 500,
+        target_error: None,
+        excursions: false,
+        ..RoomStudy::default()
+    };
+    let p = &coarse.run(|_| {}).unwrap()[0];
+    let steady = p.steady.expect("deposition removes them");
+    let v_s = 1000.0 * 100e-6_f64.powi(2) * 9.80665 / (18.0 * 1.81e-5);
+    let by_hand = 2.5 / (2.0 * v_s);
+    println!(
+        "100 um: E[T] {:.3} +- {:.3} s against H / (2 v_s) = {by_hand:.3} s",
+        steady.residence.value, steady.residence.error
+    );
+    assert!(
+        (steady.residence.value / by_hand - 1.0).abs() < 3.0 * steady.residence.error / by_hand + 0.05,
+        "{steady:?}"
+    );
+    assert!(steady.fates[0] > 0.99, "{:?}", steady.fates);
+    // The floor's steady flux is the source's share onto it: v_d A C = S P(floor), C = S E[T] / V.
+    let floor = steady.deposition_velocity[0];
+    assert!((floor.value * 12.0 * steady.residence.value / 30.0 / steady.fates[0] - 1.0).abs() < 1e-12);
+}
