@@ -530,6 +530,16 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
             batch.normal[2], v[0], v[1], v[2], (int)outcome);
   }
 
+  /* Code_Saturne counts its "particle/boundary interactions" statistic (Part_impact_number)
+     for its own wall types only: a depo zone's contacts, rebounds and captures, are counted
+     here as a CS_LAGR_REBOUND or CS_LAGR_DEPO1 face counts them. */
+  if (   (outcome == DEPO_REBOUND || outcome == DEPO_CAPTURED)
+      && cs_glob_lagr_boundary_interactions->has_part_impact_nbr > 0 && bound_stat != NULL) {
+    cs_real_t w = cs_lagr_particles_get_real(particles, p_id, CS_LAGR_STAT_WEIGHT);
+#   pragma omp atomic
+    bound_stat[cs_glob_lagr_boundary_interactions->inbr * cs_glob_mesh->n_b_faces + face_id] += w;
+  }
+
   if (outcome == DEPO_REBOUND) {
     _put_back(particles, p_id, c_intersect, centre, cell_id);
     cs_real_t *seen = cs_lagr_particles_attr(particles, p_id, CS_LAGR_VELOCITY_SEEN);
@@ -562,7 +572,10 @@ cs_lagr_user_boundary_interaction(cs_lagr_particle_set_t    *particles,
       cs_real_t *coords = cs_lagr_particles_attr(particles, p_id, CS_LAGR_COORDS);
       for (int k = 0; k < 3; k++)
         coords[k] = c_intersect[k];
-      *event_flag = *event_flag | (CS_EVENT_OUTFLOW | CS_EVENT_DEPOSITION);
+      /* CS_EVENT_DEPOSITION alone, as Code_Saturne's CS_LAGR_DEPO1 flags it: its boundary
+         statistics take an event flagged CS_EVENT_OUTFLOW for a particle leaving through an
+         outlet, and set its impact angle and velocity to 0. */
+      *event_flag = *event_flag | CS_EVENT_DEPOSITION;
       *tracking_state = CS_LAGR_PART_OUT;
     }
   }

@@ -1,7 +1,9 @@
 //! depo inside a real CFD code: Code_Saturne 6.0 (Debian's `code-saturne`) runs the check case
 //! of `integrations/code_saturne` with libdepo at every particle-wall contact, and every contact
 //! it recorded must be what depo's own `WallLaw` gives for the same incoming velocity and
-//! normal: the same outcome and the same outgoing velocity to round-off.
+//! normal: the same outcome and the same outgoing velocity to round-off. Code_Saturne's own
+//! boundary statistics of the run (its particle/boundary interactions, events, impact velocity
+//! and angle, mass flux) must count those contacts.
 //!
 //! It also runs a small version of the channel case with depo's deposition wall function on
 //! both walls, and the deposition velocity it measures must be the one the wall function
@@ -69,32 +71,56 @@ fn install_prefix(work: &std::path::Path) -> std::path::PathBuf {
     prefix
 }
 
-#[test]
-fn check_case_contacts_are_the_wall_law_to_round_off() {
-    if !code_saturne_found("check_case_contacts_are_the_wall_law_to_round_off") {
-        return;
-    }
-    let work = libdir().join("code-saturne");
-    let prefix = install_prefix(&work);
+/// What one run of the check case gave on one boundary zone.
+#[derive(Debug, Default, Clone, Copy)]
+struct ZoneCounts {
+    rebounds: usize,
+    captures: usize,
+}
+
+/// Each rank's file of a run: `name.csv` in a serial run, `name_<rank>.csv` in a parallel one.
+fn rank_files(resu: &std::path::Path, name: &str) -> Vec<String> {
+    let mut files: Vec<_> = std::fs::read_dir(resu)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|f| f == &format!("{name}.csv") || (f.starts_with(&format!("{name}_")) && f.ends_with(".csv")))
+        .collect();
+    files.sort();
+    files.iter().map(|f| std::fs::read_to_string(resu.join(f)).unwrap()).collect()
+}
+
+/// Runs the check case on `nprocs` ranks and checks it: every recorded contact against depo's
+/// own `WallLaw`, Code_Saturne's deposited count against depo's captures, and Code_Saturne's
+/// boundary statistics against the contacts. Returns the contacts per zone name.
+fn check_case(work: &std::path::Path, prefix: &std::path::Path, nprocs: usize) -> HashMap<String, ZoneCounts> {
     let integration = root().join("integrations/code_saturne");
-    let case = work.join("check");
+    let case = work.join(format!("check-{nprocs}"));
     run(Command::new("bash")
         .arg(integration.join("run_case.sh"))
         .arg(integration.join("check_case"))
         .arg(&case)
-        .arg("1")
-        .env("DEPO_PREFIX", &prefix));
+        .arg(nprocs.to_string())
+        .env("DEPO_PREFIX", prefix)
+        // OpenMPI refuses to start as root (a container's user) without these.
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"));
 
     let resu = case.join("study/case/RESU/run");
     let listing = std::fs::read_to_string(resu.join("listing")).unwrap();
     let laws = zone_laws(&listing);
     assert_eq!(laws.len(), 3, "the check case sets a law on the floor, the ceiling and the walls");
-    let csv = std::fs::read_to_string(resu.join("depo_impacts.csv")).unwrap();
+    let impacts = rank_files(&resu, "depo_impacts");
+    assert_eq!(impacts.len(), nprocs, "one impacts file per rank");
     let mut counts = [0usize; 4];
-    let mut zones_hit = std::collections::BTreeSet::new();
-    for (row, line) in csv.lines().skip(1).enumerate() {
+    let mut zones: HashMap<u32, ZoneCounts> = HashMap::new();
+    // Per zone: the sum of the incoming speeds and of the angles between the incoming velocity
+    // and the face's outward normal, over the contacts (Code_Saturne's impact statistics).
+    let mut speeds: HashMap<u32, (f64, f64)> = HashMap::new();
+    let mut diameter = 0.0;
+    for (row, line) in impacts.iter().flat_map(|csv| csv.lines().skip(1)).enumerate() {
         let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         let zone = f[0] as u32;
+        diameter = f[1];
         let (v, n, out, outcome) =
             (DVec3::new(f[2], f[3], f[4]), DVec3::new(f[5], f[6], f[7]), [f[8], f[9], f[10]], f[11]);
         let (name, law) = &laws[&zone];
@@ -119,25 +145,96 @@ fn check_case_contacts_are_the_wall_law_to_round_off() {
             assert!((out[k] - velocity[k]).abs() <= 1e-14 * v.length(), "row {row}: {line}: {velocity:?}");
         }
         counts[outcome as usize] += 1;
-        zones_hit.insert(zone);
+        let zone_counts = zones.entry(zone).or_default();
+        match outcome as usize {
+            0 => zone_counts.rebounds += 1,
+            1 => zone_counts.captures += 1,
+            _ => {}
+        }
+        let sums = speeds.entry(zone).or_default();
+        sums.0 += v.length();
+        sums.1 += (-v.dot(n) / v.length()).clamp(-1.0, 1.0).acos();
     }
     eprintln!(
-        "Code_Saturne check case: {} contacts, {} rebounds, {} captured",
-        csv.lines().count() - 1,
+        "Code_Saturne check case on {nprocs} rank(s): {} contacts, {} rebounds, {} captured",
+        counts.iter().sum::<usize>(),
         counts[0],
         counts[1]
     );
     // The case is built so that all three zones are hit, and slow particles are captured.
-    assert!(counts[0] > 500 && counts[1] >= 10 && zones_hit.len() == 3, "{counts:?} {zones_hit:?}");
+    assert!(counts[0] > 500 && counts[1] >= 10 && zones.len() == 3, "{counts:?} {zones:?}");
     assert_eq!(counts[2] + counts[3], 0, "every recorded contact moves into the wall with finite velocity");
     // Code_Saturne's own accounting counts depo's captures as its deposits: the listing's
-    // per-step "deposited" lines add up to them.
+    // per-step "deposited" lines add up to them (over all ranks).
     let deposited: usize = listing
         .lines()
         .filter_map(|l| l.strip_prefix("ln  deposited"))
         .map(|l| l.split_whitespace().next().unwrap().parse::<usize>().unwrap())
         .sum();
     assert_eq!(deposited, counts[1], "Code_Saturne's deposited count against depo's captures");
+
+    // Code_Saturne's boundary statistics, accumulated over the run and written per face at the
+    // last step (depo_check_statistics.c), summed over each zone's faces and the ranks.
+    let stats = rank_files(&resu, "depo_boundary_stats");
+    assert_eq!(stats.len(), nprocs, "one statistics file per rank");
+    // The check case's step and duration (cs_user_parameters.c) and particle density
+    // (cs_user_lagr_volume_conditions.c); every particle has a statistical weight of 1.
+    let (dt, duration, density) = (1e-3, 0.1, 8000.0);
+    let mass = density * std::f64::consts::PI / 6.0 * diameter.powi(3);
+    #[derive(Default, Debug)]
+    struct Sums {
+        impact_number: f64,
+        events: f64,
+        speed: f64,
+        angle: f64,
+        mass: f64,
+    }
+    let mut sums: HashMap<u32, Sums> = HashMap::new();
+    for csv in &stats {
+        let mut lines = csv.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
+        for line in lines {
+            let f: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+            let s = sums.entry(f[col("zone")] as u32).or_default();
+            // The events' weight accumulates each event's statistical weight times the step.
+            let weight = f[col("particle_events_weight")] / dt;
+            s.impact_number += f[col("impact_number")];
+            s.events += weight;
+            s.speed += weight * f[col("mean_particle_impact_velocity")];
+            s.angle += weight * f[col("mean_particle_impact_angle")];
+            s.mass += f[col("mean_particle_mass_flux")] * f[col("area")] * duration;
+        }
+    }
+    for (zone, c) in &zones {
+        let (name, _) = &laws[zone];
+        let s = &sums[zone];
+        let contacts = (c.rebounds + c.captures) as f64;
+        let (speed, angle) = speeds[zone];
+        let what = format!("{name} on {nprocs} rank(s): {c:?}, Code_Saturne's statistics {s:?}");
+        assert!(contacts > 0.0 && s.impact_number > 0.0 && s.speed > 0.0, "{what}");
+        // Its "particle/boundary interactions" (counted by the hook on a depo zone) and its
+        // events: one per contact, rebound or capture.
+        assert_eq!(s.impact_number, contacts, "Part_impact_number: {what}");
+        assert!((s.events - contacts).abs() < 1e-9 * contacts, "events' weight: {what}");
+        // The impact velocity and angle take every contact, captures included.
+        assert!((s.speed - speed).abs() <= 1e-12 * speed, "impact velocity: {speed} against {what}");
+        assert!((s.angle - angle).abs() <= 1e-7 * contacts, "impact angle: {angle} against {what}");
+        // The mass flux takes the captures.
+        let captured = c.captures as f64 * mass;
+        assert!((s.mass - captured).abs() <= 1e-9 * mass, "mass flux: {captured} kg against {what}");
+    }
+    zones.into_iter().map(|(zone, c)| (laws[&zone].0.clone(), c)).collect()
+}
+
+#[test]
+fn check_case_contacts_are_the_wall_law_to_round_off() {
+    if !code_saturne_found("check_case_contacts_are_the_wall_law_to_round_off") {
+        return;
+    }
+    let work = libdir().join("code-saturne");
+    let prefix = install_prefix(&work);
+    check_case(&work, &prefix, 1);
 }
 
 /// The wall function in the channel case, small: the flow developed as in the full case, then
