@@ -3,7 +3,8 @@
 //! it recorded must be what depo's own `WallLaw` gives for the same incoming velocity and
 //! normal: the same outcome and the same outgoing velocity to round-off. Code_Saturne's own
 //! boundary statistics of the run (its particle/boundary interactions, events, impact velocity
-//! and angle, mass flux) must count those contacts.
+//! and angle, mass flux) must count those contacts. The check case runs on 1 rank and, where
+//! `mpiexec` is installed, on 2 (a SKIPPED line otherwise), and the two must agree.
 //!
 //! It also runs a small version of the channel case with depo's deposition wall function on
 //! both walls, and the deposition velocity it measures must be the one the wall function
@@ -69,6 +70,17 @@ fn install_prefix(work: &std::path::Path) -> std::path::PathBuf {
     let prefix = work.join("prefix");
     run(Command::new("bash").arg(root().join("crates/capi/install.sh")).arg(&prefix).arg(&lib));
     prefix
+}
+
+/// Whether an MPI launcher is there for a parallel run; without it, a SKIPPED line for `what`.
+fn mpi_found(what: &str) -> bool {
+    let found = Command::new("mpiexec").arg("--version").output().is_ok_and(|o| o.status.success());
+    if !found {
+        use std::io::Write;
+        let line = format!("SKIPPED {what}: mpiexec is not installed (on Debian: apt-get install openmpi-bin)\n");
+        let _ = std::io::stderr().write_all(line.as_bytes());
+    }
+    found
 }
 
 /// What one run of the check case gave on one boundary zone.
@@ -234,7 +246,30 @@ fn check_case_contacts_are_the_wall_law_to_round_off() {
     }
     let work = libdir().join("code-saturne");
     let prefix = install_prefix(&work);
-    check_case(&work, &prefix, 1);
+    let serial = check_case(&work, &prefix, 1);
+
+    // The same case on 2 ranks, as a user runs it: its particles start at random places (the
+    // injection draws them in each cell, and each rank draws its own), so the counts are not
+    // the serial run's, but each zone's captures (at most one a particle: binomial over the
+    // 540 particles) and rebounds (several a particle: Poisson) must agree within three
+    // standard errors.
+    if !mpi_found("check_case_contacts_are_the_wall_law_to_round_off on 2 ranks") {
+        return;
+    }
+    let parallel = check_case(&work, &prefix, 2);
+    let particles = 540.0;
+    for (name, one) in &serial {
+        let two = parallel.get(name).copied().unwrap_or_default();
+        let (p1, p2) = (one.captures as f64 / particles, two.captures as f64 / particles);
+        let p = (p1 + p2) / 2.0;
+        let captures_error = (2.0 * p * (1.0 - p) / particles).sqrt();
+        assert!((p1 - p2).abs() <= 3.0 * captures_error, "{name}: captures {one:?} on 1 rank, {two:?} on 2");
+        let rebounds_error = ((one.rebounds + two.rebounds) as f64).sqrt();
+        assert!(
+            (one.rebounds as f64 - two.rebounds as f64).abs() <= 3.0 * rebounds_error,
+            "{name}: rebounds {one:?} on 1 rank, {two:?} on 2"
+        );
+    }
 }
 
 /// The wall function in the channel case, small: the flow developed as in the full case, then
