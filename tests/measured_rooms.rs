@@ -42,7 +42,7 @@ fn room_json(scene: &Path) -> Value {
 fn measured_room_scenes_parse_run_and_have_the_papers_volumes() {
     // Thatcher et al. (2002): 14.2 m^3; Lai & Nazaroff (2005): 1.8 m^3 (their abstracts).
     for (file, volume) in [(THATCHER[0], 14.2), (THATCHER[1], 14.2), (CHAMBER, 1.8)] {
-        let quick = edited(file, &[("duration = 1800.0", "duration = 0.0")]);
+        let quick = edited(file, &[("duration = 1800.0", "duration = 0.1")]);
         let report = room_json(&quick);
         let size: Vec<f64> = report["size_m"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
         let v = size.iter().product::<f64>();
@@ -88,7 +88,7 @@ fn furnished_rooms_are_the_bare_ones_with_the_papers_12_m2_of_furniture() {
         assert!((area - 12.0).abs() < 0.01, "{furnished}: {area} m^2 of furniture");
         // depo takes the boxes as the file gives them: the air is the cube less their
         // volume, the surface the cube's six faces and their area.
-        let quick = edited(furnished, &[("duration = 1800.0", "duration = 0.0")]);
+        let quick = edited(furnished, &[("duration = 1800.0", "duration = 0.1")]);
         let report = room_json(&quick);
         let side = report["size_m"][0].as_f64().unwrap();
         let air = report["air_volume_m3"].as_f64().unwrap();

@@ -715,8 +715,8 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
             src.at(&["run.dt_plus", "run.duration_plus"], "a room takes `run.dt` and `run.duration` in seconds")
         );
     }
-    // A zero duration is a run that only checks its scene.
-    if scene.duration > 0.0 && scene.dt > scene.duration {
+    check_duration(&src, "run.duration", file.run.duration)?;
+    if scene.dt > scene.duration {
         return Err(src.at(
             &["run.dt", "run.duration"],
             format!("`run.dt` = {} s is longer than the run, `run.duration` = {} s", scene.dt, scene.duration),
@@ -838,7 +838,8 @@ pub fn channel(path: Option<&Path>) -> Result<(ChannelStudy, SceneSource), Error
             src.at(&["run.dt", "run.duration"], "a channel takes `run.dt_plus` and `run.duration_plus` in wall units")
         );
     }
-    if duration_plus > 0.0 && dt_plus > duration_plus {
+    check_duration(&src, "run.duration_plus", file.run.duration_plus)?;
+    if dt_plus > duration_plus {
         return Err(src.at(
             &["run.dt_plus", "run.duration_plus"],
             format!("`run.dt_plus` = {dt_plus} is longer than the run, `run.duration_plus` = {duration_plus}"),
@@ -875,6 +876,17 @@ pub fn channel(path: Option<&Path>) -> Result<(ChannelStudy, SceneSource), Error
     }
     set(&mut study.density, file.particles.density);
     Ok((study, src))
+}
+
+/// A run's length `key`, if the file sets it: a run of no time measures nothing (its rates
+/// would be bounds of `inf`).
+fn check_duration(src: &SceneSource, key: &str, value: Option<f64>) -> Result<(), Error> {
+    match value {
+        Some(d) if !(d.is_finite() && d > 0.0) => {
+            Err(src.at(&[key], format!("`{key}` = {d} must be finite and positive")))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// `particles.target_error`, if the file sets it: 0 turns the target off.
@@ -1212,6 +1224,10 @@ mod tests {
             " line 11: `dt` = 0 must be finite and positive"
         );
         assert_eq!(
+            room_error("duration", "[run]\n\nduration = 0.0\n"),
+            " line 10: `run.duration` = 0 must be finite and positive"
+        );
+        assert_eq!(
             room_error("scheme", "[run]\nduration = 10.0\nscheme = \"euler\"\n"),
             " line 10: `run.scheme` = \"euler\": expected \"exponential\" or \"midpoint\""
         );
@@ -1261,6 +1277,10 @@ mod tests {
         assert_eq!(
             error("seconds", &format!("{head}[run]\nduration_plus = 10.0\ndt = 0.1\n"), "channel"),
             " line 8: a channel takes `run.dt_plus` and `run.duration_plus` in wall units"
+        );
+        assert_eq!(
+            error("duration_plus", &format!("{head}[run]\nduration_plus = 0.0\n"), "channel"),
+            " line 7: `run.duration_plus` = 0 must be finite and positive"
         );
         let message = error("dt_plus", &format!("{head}[run]\nduration_plus = 10.0\ndt_plus = -0.1\n"), "channel");
         assert!(
