@@ -120,6 +120,9 @@ struct Report<'a> {
 pub fn run(args: &ChannelArgs) -> Result<(), Error> {
     let (mut study, source) = scene_file::channel(args.scene.as_deref())?;
     if let Some(list) = &args.tau_plus {
+        if list.is_empty() {
+            return Err("--tau-plus: give at least one value".into());
+        }
         if let Some(bad) = list.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
             return Err(format!("--tau-plus: {bad} is not a positive number"));
         }

@@ -857,6 +857,9 @@ pub fn channel(path: Option<&Path>) -> Result<(ChannelStudy, SceneSource), Error
     set(&mut study.transient, file.run.transient);
     check_transient(&src, study.transient)?;
     set(&mut study.tau_plus, file.particles.tau_plus);
+    if study.tau_plus.is_empty() {
+        return Err(src.at(&["particles.tau_plus"], "`particles.tau_plus` is empty"));
+    }
     set(&mut study.count, file.particles.count);
     set(&mut study.excursion_count, file.particles.excursion_count);
     check_count(&src, "particles.count", &["particles.count"], study.count)?;
@@ -1277,6 +1280,10 @@ mod tests {
         assert_eq!(
             error("seconds", &format!("{head}[run]\nduration_plus = 10.0\ndt = 0.1\n"), "channel"),
             " line 8: a channel takes `run.dt_plus` and `run.duration_plus` in wall units"
+        );
+        assert_eq!(
+            error("tau_plus", "[channel]\nre_tau = 150.0\n[particles]\ntau_plus = []\ncount = 10\n", "channel"),
+            " line 4: `particles.tau_plus` is empty"
         );
         assert_eq!(
             error("duration_plus", &format!("{head}[run]\nduration_plus = 0.0\n"), "channel"),
