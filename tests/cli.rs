@@ -165,7 +165,18 @@ fn user_errors_are_one_line() {
     user_error(&["bench", "--n", "10000", "--filter", "no such kernel"], "matches no kernel");
     user_error(&["bench", "--studies", "--scale", "0"], "--scale 0 is not in (0, 100]");
     user_error(&["bench", "--studies", "--plot", "x.svg"], "not --studies");
-    user_error(&["bench", "--studies", "--threads", "0"], "--threads must be at least 1");
+    user_error(&["bench", "--studies", "--threads", "0"], "--threads 0 must be from 1 to 1024");
+}
+
+/// A pool of thousands of threads took minutes to start: `--threads` stops where the C ABI's
+/// `depo_set_num_threads` does, before any work, whatever the bench.
+#[test]
+fn bench_threads_stop_at_the_c_abi_s_limit() {
+    for threads in ["1025", "2048", "5000"] {
+        let message = format!("--threads {threads} must be from 1 to 1024");
+        user_error(&["bench", "--threads", threads, "--n", "1000", "--reps", "1", "--filter", "p=1 q=1"], &message);
+        user_error(&["bench", "--integrators", "--threads", threads], &message);
+    }
 }
 
 #[test]

@@ -12,6 +12,7 @@ use depo::tracker::convergence::{integrator_convergence, relaxation_time};
 use depo::tracker::efficiency::{compare_methods, MethodRun, TimeTo, CASES, MIN_EVENTS};
 use depo::tracker::studies::TARGET_ERROR;
 use depo::tracker::Scheme;
+use depo::wall_model::kernel::MAX_THREADS;
 use serde::Serialize;
 
 use super::plot::{self, Series};
@@ -23,7 +24,7 @@ pub struct BenchArgs {
     /// Impacts per kernel call.
     #[arg(long, default_value_t = 10_000_000)]
     n: usize,
-    /// Threads.
+    /// Threads, at most 1024 (as the C ABI's `depo_set_num_threads`).
     #[arg(long, default_value_t = 2)]
     threads: usize,
     /// Interleaved rounds per kernel (medians are reported).
@@ -63,8 +64,8 @@ struct Row {
 }
 
 pub fn run(args: &BenchArgs) -> Result<(), Error> {
-    if args.threads == 0 {
-        return Err("--threads must be at least 1".into());
+    if !(1..=MAX_THREADS).contains(&args.threads) {
+        return Err(format!("--threads {} must be from 1 to {MAX_THREADS}", args.threads));
     }
     if args.integrators {
         return integrators(args);

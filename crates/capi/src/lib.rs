@@ -454,6 +454,7 @@ const _: () = assert!(DEPO_PARALLEL_MIN == depo_wall_model::kernel::PARALLEL_MIN
 
 /// The largest thread cap `depo_set_num_threads` accepts.
 pub const DEPO_MAX_THREADS: usize = 1024;
+const _: () = assert!(DEPO_MAX_THREADS == depo_wall_model::kernel::MAX_THREADS);
 
 /// Where depo runs large batches, as set by `depo_set_num_threads`.
 enum Threads {

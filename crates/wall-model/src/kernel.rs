@@ -37,6 +37,10 @@ use crate::real::{select, Real};
 pub const PARALLEL_MIN: usize = 1 << 16;
 /// The size of the pieces a large batch is cut into for the threads.
 pub const LEAF: usize = 1 << 14;
+/// The most threads a pool of depo's may be asked for (the C ABI's `depo_set_num_threads`,
+/// the command line's `--threads`): beyond any machine's cores, a larger pool only takes
+/// minutes to start and to wake.
+pub const MAX_THREADS: usize = 1024;
 /// Independent accumulators of the tally's energy sums (keeps them vectorisable).
 const LANES: usize = 8;
 /// Particles per block where a sweep works a block at a time: general exponents' powers are
