@@ -347,6 +347,35 @@ fn scratch(name: &str) -> std::path::PathBuf {
     dir
 }
 
+/// A figure that cannot be written fails the command before its run, not after it: nothing is
+/// printed but the error. The room's default directory is made in the working directory.
+#[test]
+fn unwritable_figures_fail_before_the_run() {
+    let dir = scratch("unwritable");
+    let room = dir.join("room.toml");
+    std::fs::write(&room, "[room]\nsize = [2.0, 2.0, 2.0]\n[particles]\ndiameters = [1e-6]\ncount = 10\n").unwrap();
+    let channel = dir.join("channel.toml");
+    std::fs::write(&channel, "[particles]\ntau_plus = [10.0]\ncount = 10\nexcursion_count = 10\n").unwrap();
+    let (room, channel) = (room.to_str().unwrap(), channel.to_str().unwrap());
+    let before_the_run = |args: &[&str], cwd: &str, what: &str| {
+        let out = Command::new(env!("CARGO_BIN_EXE_depo")).args(args).current_dir(cwd).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && out.stdout.is_empty(), "depo {args:?}: {stderr}");
+        assert!(stderr.starts_with("depo: ") && stderr.trim_end().lines().count() == 1, "{stderr}");
+        assert!(stderr.contains(what), "{stderr}");
+    };
+    let tmp = std::env::temp_dir();
+    let tmp = tmp.to_str().unwrap();
+    before_the_run(&["room", room, "--plot", "/proc/nope"], tmp, "cannot create /proc/nope");
+    before_the_run(&["room", room], "/proc", "cannot create depo-room");
+    before_the_run(&["channel", channel, "--plot", "/proc/nope/x.svg"], tmp, "cannot write /proc/nope/x.svg");
+    before_the_run(&["bench", "--integrators", "--plot", "/proc/nope/x.svg"], tmp, "cannot write /proc/nope/x.svg");
+    // A writable figure's path is left as it was: no empty file where there was none.
+    let figure = dir.join("channel.svg");
+    user_error(&["channel", channel, "--plot", figure.to_str().unwrap(), "--tau-plus", "0"], "--tau-plus: 0");
+    assert!(!figure.exists());
+}
+
 #[test]
 fn room_runs_a_scene_file_and_reports_beside_lai_nazaroff() {
     let dir = scratch("room");

@@ -67,11 +67,14 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
     if !(1..=MAX_THREADS).contains(&args.threads) {
         return Err(format!("--threads {} must be from 1 to {MAX_THREADS}", args.threads));
     }
-    if args.integrators {
-        return integrators(args);
-    }
     if args.studies {
         return studies(args);
+    }
+    if let Some(path) = &args.plot {
+        plot::check_writable(path)?;
+    }
+    if args.integrators {
+        return integrators(args);
     }
     if args.n < 1000 || args.reps == 0 {
         return Err("--n must be at least 1000, --reps at least 1".into());

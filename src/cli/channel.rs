@@ -119,6 +119,9 @@ struct Report<'a> {
 
 pub fn run(args: &ChannelArgs) -> Result<(), Error> {
     let (mut study, source) = scene_file::channel(args.scene.as_deref())?;
+    if let Some(path) = &args.plot {
+        plot::check_writable(path)?;
+    }
     if let Some(list) = &args.tau_plus {
         if list.is_empty() {
             return Err("--tau-plus: give at least one value".into());

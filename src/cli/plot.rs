@@ -13,6 +13,29 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::Error;
 
+/// Fails with one line where the figure `path` cannot be written, so that a long run is not
+/// lost to it at the end. A file that was not there is not left behind.
+pub fn check_writable(path: &Path) -> Result<(), Error> {
+    let existed = path.exists();
+    // Appending to an existing file changes nothing in it.
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    if !existed {
+        std::fs::remove_file(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// Creates the directory `dir` for figures and checks that a file can be written in it, before
+/// a long run (see [`check_writable`]).
+pub fn check_directory(dir: &Path) -> Result<(), Error> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    check_writable(&dir.join(format!(".depo-check-{}", std::process::id())))
+}
+
 /// How a series is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Style {

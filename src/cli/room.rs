@@ -661,6 +661,9 @@ fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtration) -> R
 pub fn run(args: &RoomArgs) -> Result<(), Error> {
     let scene = scene_file::room_scene(args.scene.as_deref())?;
     let mut study: RoomStudy = scene.study;
+    if !args.no_plot {
+        plot::check_directory(&args.plot)?;
+    }
     // A size distribution runs the study at its bins instead of the study's diameters.
     let distribution = scene.distribution.map(|distribution| DistributionStudy { study: study.clone(), distribution });
     let runs = match &distribution {
@@ -1015,7 +1018,6 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
         d.table();
     }
     if !args.no_plot {
-        std::fs::create_dir_all(&args.plot).map_err(|e| format!("cannot create {}: {e}", args.plot.display()))?;
         plot_room(&args.plot, &study, &rows)?;
         if let Some(d) = &distribution {
             let figure = args.plot.join("room-distribution.svg");
