@@ -154,6 +154,31 @@ fn impact_explains_a_rolling_rebound_and_its_energy() {
     assert!(table.contains("spin after") && table.contains("lost to"));
 }
 
+/// Speeds whose energies would overflow are refused, naming the range taken; at its edge every
+/// printed quantity is finite and short, and small ones are not shown as zeros.
+#[test]
+fn speeds_stop_where_the_energies_would_overflow() {
+    let law = ["--preset", "li1997-sio2"];
+    let with_law = |args: &[&'static str]| [&law[..], args].concat();
+    user_error(&[&["impact"][..], &with_law(&["--velocity", "0,0,-1e300"])].concat(), "speeds up to 1e100 m/s");
+    user_error(&[&["curve"][..], &with_law(&["--vn-max", "1e300"])].concat(), "--vn-max 1e300: speeds up to 1e100");
+    user_error(
+        &[&["impact"][..], &with_law(&["--velocity", "0,0,-1", "--spin", "1e300,0,0"])].concat(),
+        "surface speeds up to 1e100 m/s",
+    );
+    let short = |text: &str| {
+        assert!(!text.contains("inf") && !text.contains("NaN"), "{text}");
+        assert!(text.lines().all(|l| l.len() < 160), "{text}");
+    };
+    short(&ok_text(&[&["impact"][..], &with_law(&["--velocity", "1e-9,0,-1e100", "--spin", "0,1e100,0"])].concat()));
+    let json = ok_json(&[&["impact"][..], &with_law(&["--velocity", "0,0,-1e100", "--format", "json"])].concat());
+    assert!(json["kinetic_energy_before"].as_f64().unwrap().is_finite());
+    let curve =
+        ok_text(&[&["curve"][..], &with_law(&["--vn-min", "1e-8", "--vn-max", "1e100", "--points", "3"])].concat());
+    short(&curve);
+    assert!(curve.contains("1.0000e-8") && curve.contains("1.0000e100"), "{curve}");
+}
+
 #[test]
 fn user_errors_are_one_line() {
     user_error(&["curve", "--preset", "granite"], "unknown wall-law preset 'granite'");

@@ -6,7 +6,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::plot::{self, Series};
-use super::{check_memory, print_csv, Error, Format, LawArgs};
+use super::{check_memory, fixed, print_csv, Error, Format, LawArgs, MAX_SPEED};
 
 #[derive(Args, Debug)]
 pub struct CurveArgs {
@@ -64,6 +64,9 @@ pub fn run(args: &CurveArgs) -> Result<(), Error> {
     let (a, b) = (args.vn_min, args.vn_max);
     if !(a.is_finite() && b.is_finite() && a > 0.0 && a < b) {
         return Err(format!("--vn-min {a} and --vn-max {b}: need 0 < vn-min < vn-max"));
+    }
+    if b > MAX_SPEED {
+        return Err(format!("--vn-max {b:e}: speeds up to {MAX_SPEED:e} m/s are taken"));
     }
     if args.points < 2 {
         return Err(format!("--points {}: need at least 2", args.points));
@@ -126,8 +129,8 @@ pub fn run(args: &CurveArgs) -> Result<(), Error> {
             out!("{:>10} {:>9} {:>9} {:>9}  outcome", "|vn| m/s", "R", "rho", "e");
             for p in &points {
                 out!(
-                    "{:>10.4} {:>9.5} {:>9.5} {:>9.5}  {}",
-                    p.vn,
+                    "{:>10} {:>9.5} {:>9.5} {:>9.5}  {}",
+                    fixed(p.vn, 4),
                     p.r,
                     p.rho,
                     p.e,

@@ -7,7 +7,7 @@ use depo::wall_model::CaptureMode;
 use glam::DVec3;
 use serde::Serialize;
 
-use super::{parse_vector, print_csv, Error, Format, LawArgs};
+use super::{fixed, parse_vector, print_csv, Error, Format, LawArgs, MAX_SPEED};
 
 #[derive(Args, Debug)]
 pub struct ImpactArgs {
@@ -65,12 +65,23 @@ pub fn run(args: &ImpactArgs) -> Result<(), Error> {
         return Err("--normal: the zero vector has no direction".into());
     }
     let n = n.normalize();
+    if v.abs().max_element() > MAX_SPEED {
+        return Err(format!("--velocity {}: speeds up to {MAX_SPEED:e} m/s are taken", args.velocity));
+    }
     let spin = match &args.spin {
         Some(text) => {
             if !(args.radius.is_finite() && args.radius > 0.0) {
                 return Err(format!("--radius {}: must be positive", args.radius));
             }
-            Some((DVec3::from_array(parse_vector(text).map_err(|e| format!("--spin: {e}"))?), args.radius))
+            let w = DVec3::from_array(parse_vector(text).map_err(|e| format!("--spin: {e}"))?);
+            // The spin's speed at the surface, as the velocity's.
+            if w.abs().max_element() * args.radius > MAX_SPEED {
+                return Err(format!(
+                    "--spin {text} with --radius {}: surface speeds up to {MAX_SPEED:e} m/s are taken",
+                    args.radius
+                ));
+            }
+            Some((w, args.radius))
         }
         None => None,
     };
@@ -169,21 +180,22 @@ pub fn run(args: &ImpactArgs) -> Result<(), Error> {
         }
         Format::Table => {
             let r = &report;
-            out!("normal velocity vn     {:.6} m/s", r.normal_velocity);
+            let f = |x: f64| fixed(x, 6);
+            out!("normal velocity vn     {} m/s", f(r.normal_velocity));
             out!("outcome                {}", r.outcome);
             if r.impact {
                 out!("coefficients           R {:.6}  rho {:.6}  e {:.6}", r.r, r.rho, r.e);
                 out!(
-                    "tangential             {} (slip {:.6} m/s, impulse {:.6} m/s)",
+                    "tangential             {} (slip {} m/s, impulse {} m/s)",
                     r.regime,
-                    r.slip_before,
-                    r.tangential_impulse
+                    f(r.slip_before),
+                    f(r.tangential_impulse)
                 );
             }
             let [x, y, z] = r.velocity_after;
-            out!("velocity after         {x:.6}, {y:.6}, {z:.6} m/s");
+            out!("velocity after         {}, {}, {} m/s", f(x), f(y), f(z));
             if let Some([x, y, z]) = r.spin_after {
-                out!("spin after             {x:.4}, {y:.4}, {z:.4} rad/s");
+                out!("spin after             {}, {}, {} rad/s", fixed(x, 4), fixed(y, 4), fixed(z, 4));
             }
             out!(
                 "kinetic energy         {:.6e} -> {:.6e} J/kg (per unit particle mass)",

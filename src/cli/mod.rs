@@ -138,6 +138,22 @@ fn physical_memory() -> Option<u64> {
     kib.checked_mul(1024)
 }
 
+/// The largest speed the commands take (m/s): every energy per unit mass they print, `v^2 / 2`,
+/// stays finite, far beyond any particle's.
+pub const MAX_SPEED: f64 = 1e100;
+
+/// `x` for a table: with `decimals` decimals from 1e-3 to 1e6 (and 0), in e-notation with as
+/// many in the mantissa beyond that (`1.500000e-7`), so that no value is hundreds of digits
+/// long nor a small one `0.000000`.
+pub fn fixed(x: f64, decimals: usize) -> String {
+    let a = x.abs();
+    if a == 0.0 || (1e-3..1e6).contains(&a) {
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.decimals$e}")
+    }
+}
+
 /// Parses "X,Y,Z" into three numbers.
 pub fn parse_vector(text: &str) -> Result<[f64; 3], String> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
