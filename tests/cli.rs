@@ -179,6 +179,25 @@ fn speeds_stop_where_the_energies_would_overflow() {
     assert!(curve.contains("1.0000e-8") && curve.contains("1.0000e100"), "{curve}");
 }
 
+/// Numbers the command computes read to six digits in its text, not as `0.030000000000000002`.
+#[test]
+fn computed_numbers_in_text_are_rounded() {
+    let dir = scratch("rounded");
+    let room = dir.join("room.toml");
+    std::fs::write(
+        &room,
+        "[room]\nsize = [2.0, 2.0, 2.0]\n[particles]\ndiameters = [1e-6]\ncount = 10\ntarget_error = 0.07\n\
+         max_count = 10\n[run]\ndt = 0.1\nduration = 0.3\ntransient = 0.1\n",
+    )
+    .unwrap();
+    let text = ok_text(&["room", room.to_str().unwrap(), "--no-plot"]);
+    assert!(text.contains("Averages from 0.03 s to 0.3 s;"), "{text}");
+    assert!(text.contains("above 7 % error"), "{text}");
+    let fit = ok_text(&["fit", "examples/li1997-synthetic.csv", "--free-exponents"]);
+    let pq = fit.lines().find(|l| l.starts_with("p, q")).unwrap();
+    assert!(pq.len() < 40, "{pq}");
+}
+
 #[test]
 fn user_errors_are_one_line() {
     user_error(&["curve", "--preset", "granite"], "unknown wall-law preset 'granite'");
@@ -1027,7 +1046,7 @@ fn opening_errors_name_the_file_line_and_key() {
     run(
         "cover.toml",
         &format!("{supply}{}{cabinet}", exhaust("x1", "[1.5, 0.3]", 60.0)),
-        "line 13: `furnishings[0]` is 0.0499",
+        "line 13: `furnishings[0]` is 0.05 m off",
     );
 }
 

@@ -14,7 +14,7 @@ use serde::Serialize;
 
 use super::plot::{self, Series};
 use super::room::{log_grid, Measured, Tally, ERROR_NOTE};
-use super::{print_csv, progress_bar, scene_file, Error, Format};
+use super::{print_csv, progress_bar, scene_file, shown, Error, Format};
 
 #[derive(ClapArgs, Debug)]
 pub struct ChannelArgs {
@@ -286,23 +286,25 @@ fn run_one(args: &ChannelArgs, study: &ChannelStudy, source: &scene_file::SceneS
             let more = match study.target_error {
                 Some(target) => format!(
                     ", up to {} times as many where V+ needs them for a {:.0} % error",
-                    study.max_factor,
+                    shown(study.max_factor),
                     100.0 * target
                 ),
                 None => String::new(),
             };
             match study.scene.wall_function {
                 Some(wf) => out!(
-                    "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+{more}; V+ = v_d / u*; wall function: within {} wall units of a wall, deposition at the rate of {} (V+ = the correlation's times C_w/C, the layer's concentration over the mean)",
+                    "Turbulent channel, u* = {} m/s, Re_tau = {re_tau:.0}, {} particles per tau+{more}; V+ = v_d / u*; wall function: within {} wall units of a wall, deposition at the rate of {} (V+ = the correlation's times C_w/C, the layer's concentration over the mean)",
+                    shown(u_star),
                     study.count,
-                    wf.layer_plus,
+                    shown(wf.layer_plus),
                     wf.correlation.name()
                 ),
                 None => out!(
-                    "Turbulent channel, u* = {u_star} m/s, Re_tau = {re_tau:.0}, {} particles per tau+ ({} below tau+ {} with excursions){more}; V+ = v_d / u*",
+                    "Turbulent channel, u* = {} m/s, Re_tau = {re_tau:.0}, {} particles per tau+ ({} below tau+ {} with excursions){more}; V+ = v_d / u*",
+                    shown(u_star),
                     study.count,
                     study.excursion_count,
-                    study.excursions_below
+                    shown(study.excursions_below)
                 ),
             }
             out!(
@@ -365,7 +367,7 @@ fn run_one(args: &ChannelArgs, study: &ChannelStudy, source: &scene_file::SceneS
                 out!(
                     "* unresolved: no deposit event, or a relative standard error above the {:.0} % target that {} times the first particles would not reach.",
                     100.0 * target,
-                    study.max_factor
+                    shown(study.max_factor)
                 );
             }
             out!(

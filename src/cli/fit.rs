@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use super::csv_input::CsvInput;
 use super::plot::{self, Series};
-use super::{Error, Format};
+use super::{shown, Error, Format};
 
 #[derive(Args, Debug)]
 pub struct FitArgs {
@@ -176,7 +176,12 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
                 out.vc_low,
                 out.vc_high
             );
-            out!("p, q   {}, {}{}", out.p, out.q, if args.free_exponents { " (fitted)" } else { " (fixed)" });
+            out!(
+                "p, q   {}, {}{}",
+                shown(out.p),
+                shown(out.q),
+                if args.free_exponents { " (fitted)" } else { " (fixed)" }
+            );
             out!("fitting index (R^2 of e) {:.5}   RMSE {:.4}", out.fitting_index, out.rmse);
             out!(
                 "R(vc)  {:.4}   (Eq. 14: work of adhesion at capture / (m vc^2 / 2) = R(vc)^2 = {:.4})",
@@ -237,7 +242,9 @@ fn check_fit(report: &FitReport, args: &FitArgs) -> Result<(), Error> {
         return Err(format!(
             "the fit failed: vc = {} m/s is not positive with p = {}, q = {} {exponents}; try other --p and --q, or \
              --free-exponents",
-            params.vc, params.p, params.q
+            shown(params.vc),
+            shown(params.p),
+            shown(params.q)
         ));
     }
     Ok(())

@@ -154,6 +154,22 @@ pub fn fixed(x: f64, decimals: usize) -> String {
     }
 }
 
+/// A computed `x` in text (tables, notes, errors): to six significant digits, plainly where
+/// that is short (`0.001`, not `0.0009999999999998899`; `3000`, not `3000.0000000000005`),
+/// else in e-notation (`1.23457e-7`, `1e100`). JSON and CSV keep every digit.
+pub fn shown(x: f64) -> String {
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    let rounded: f64 = format!("{x:.5e}").parse().unwrap_or(x);
+    let plain = rounded.to_string();
+    if plain.len() <= 10 {
+        plain
+    } else {
+        format!("{rounded:e}")
+    }
+}
+
 /// Parses "X,Y,Z" into three numbers.
 pub fn parse_vector(text: &str) -> Result<[f64; 3], String> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
@@ -241,5 +257,26 @@ pub fn run(args: Args) -> Result<(), Error> {
         Command::Room(a) => room::run(&a),
         Command::Channel(a) => channel::run(&a),
         Command::Bench(a) => bench::run(&a),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{fixed, shown};
+
+    #[test]
+    fn computed_numbers_read_to_six_digits() {
+        assert_eq!(shown(0.0009999999999998899), "0.001");
+        assert_eq!(shown(3000.0000000000005), "3000");
+        assert_eq!(shown(0.030000000000000002), "0.03");
+        assert_eq!(shown(-0.014623553139192037), "-0.0146236");
+        assert_eq!(shown(1.234567e-7), "1.23457e-7");
+        assert_eq!(shown(1e300), "1e300");
+        assert_eq!(shown(12.5), "12.5");
+        assert_eq!(shown(0.0), "0");
+        assert_eq!(shown(f64::INFINITY), "inf");
+        assert_eq!(fixed(0.1, 6), "0.100000");
+        assert_eq!(fixed(-1e100, 6), "-1.000000e100");
+        assert_eq!(fixed(1e-5, 4), "1.0000e-5");
     }
 }

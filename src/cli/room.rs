@@ -17,7 +17,7 @@ use serde::Serialize;
 
 use super::plot::{self, Series};
 use super::room_distribution::DistributionReport;
-use super::{print_csv, progress_bar, scene_file, Error, Format};
+use super::{print_csv, progress_bar, scene_file, shown, Error, Format};
 
 #[derive(ClapArgs, Debug)]
 pub struct RoomArgs {
@@ -861,19 +861,19 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             let particles: Vec<String> = rows.iter().map(|r| r.particles.to_string()).collect();
             out!(
                 "Room {} x {} x {} m, u* = {} m/s, {} particles per size, {} s; deposition velocity (m/s) per surface",
-                size[0],
-                size[1],
-                size[2],
-                u_star,
+                shown(size[0]),
+                shown(size[1]),
+                shown(size[2]),
+                shown(u_star),
                 particles.join("/"),
-                study.scene.duration
+                shown(study.scene.duration)
             );
             if let Some(target) = study.target_error {
                 out!(
                     "({} first, more up to {} where beta or a surface with Lai & Nazaroff's v_d >= 1e-7 m/s was above {} % error.)",
                     study.count,
                     study.max_count,
-                    100.0 * target
+                    shown(100.0 * target)
                 );
             }
             out!("beside Lai & Nazaroff (2000) for the same u*; ratio = beta / Lai & Nazaroff's beta.");
@@ -1007,8 +1007,8 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
             }
             out!(
                 "Averages from {} s to {} s; {steps} particle-steps tracked (excursions not counted) in {seconds:.1} s.",
-                study.transient * study.scene.duration,
-                study.scene.duration
+                shown(study.transient * study.scene.duration),
+                shown(study.scene.duration)
             );
             decay_table(&rows, study.scene.exchange_rate() * 3600.0, !study.scene.openings.is_empty());
             steady_table(&rows);
@@ -1034,7 +1034,7 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
 fn density_heading(rows: &[Row], i: usize) {
     let several = rows.iter().any(|r| r.density != rows[0].density);
     if several && (i == 0 || rows[i - 1].density != rows[i].density) {
-        out!("particle density {} kg/m^3:", rows[i].density);
+        out!("particle density {} kg/m^3:", shown(rows[i].density));
     }
 }
 

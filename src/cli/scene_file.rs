@@ -19,7 +19,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::csv_input::{at_line, CsvInput};
-use super::{check_memory, Error};
+use super::{check_memory, shown, Error};
 
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
@@ -733,7 +733,7 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
             offset,
             format!(
                 "`furnishings[{k}]` is {} m off an opening's wall and {}",
-                e.value,
+                shown(e.value),
                 e.requirement.trim_end_matches(" (this is the gap, m)")
             ),
         )
