@@ -1041,6 +1041,25 @@ fn opening_errors_name_the_file_line_and_key() {
         "`ventilation.air_changes_per_hour` = 1 must be 0 with `[[openings]]`",
     );
     run("unknown.toml", &supply.replace("flow_m3_per_hour", "flow"), "line 6: unknown field `flow`");
+    // Wider than the 4 m ceiling: its size at fault, not its centre.
+    run(
+        "wide.toml",
+        &format!("{}{}", supply.replace("size = [0.6, 0.6]", "size = [4.5, 0.6]"), exhaust("x1", "[1.5, 0.3]", 60.0)),
+        "line 5: `openings[0].size` = 4.5 must fit within its wall",
+    );
+    // Two exhausts 10 cm apart, each 50 cm wide: the second entry overlaps the first.
+    run(
+        "overlap.toml",
+        &format!("{supply}{}{}", exhaust("x1", "[1.5, 0.3]", 30.0), exhaust("x1", "[1.6, 0.3]", 30.0)),
+        "line 13: `openings[2]` overlaps `openings[1]` on the same wall",
+    );
+    // A partition across the room between the supply (x about 1 m) and the exhaust (x = 4 m).
+    let partition = "[[furnishings]]\nlow = [1.9, 0.001, 0.001]\nhigh = [2.1, 2.999, 2.499]\n";
+    run(
+        "partition.toml",
+        &format!("{supply}{}{partition}", exhaust("x1", "[1.5, 0.3]", 60.0)),
+        "line 13: `[[furnishings]]` must not cut openings off from the rest of the room",
+    );
     // A cabinet whose top stands 5 cm under the supply (a grid cell is 1/12 m): it covers it.
     let cabinet = "[[furnishings]]\nlow = [0.5, 1.0, 1.0]\nhigh = [1.5, 2.0, 2.45]\n";
     run(

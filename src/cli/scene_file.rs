@@ -264,12 +264,14 @@ pub struct SceneSource {
     name: String,
     /// The file's text; empty for a built-in scene.
     text: String,
+    /// A channel's `Re_tau`; `None` for a room.
+    re_tau: Option<f64>,
 }
 
 impl SceneSource {
     /// A built-in scene's: `name` stands in for the file, and no key has a line.
     fn built_in(name: &str) -> Self {
-        Self { name: name.to_string(), text: String::new() }
+        Self { name: name.to_string(), text: String::new(), re_tau: None }
     }
 
     /// `message` as the TOML errors put it, `FILE line N: message`, with the line of the
@@ -306,6 +308,41 @@ impl SceneSource {
     /// it (`dt`, `size.x`, `air_exchange`): these are the keys a file sets it with, a room's or
     /// a channel's (a file can only hold its own kind's keys).
     pub fn scene_error(&self, e: &SceneError) -> Error {
+        match e.field.as_str() {
+            // The boxes together: the value counts them, a number the file does not give.
+            "furnishings" => return self.at(&["furnishings"], format!("`[[furnishings]]` {}", e.requirement)),
+            // A room releases its particles over the whole room, which the boxes fill.
+            "particles.region" => {
+                return self.at(
+                    &["furnishings"],
+                    format!(
+                        "`[[furnishings]]` take up {} % of the room (each grown by a particle's radius): at least 1 % \
+                         must be free air, where the particles are released",
+                        shown(100.0 * e.value)
+                    ),
+                )
+            }
+            // A channel's particles are given by their tau+, and its height by Re_tau.
+            "particles.diameter" => {
+                if let Some(re_tau) = self.re_tau {
+                    let size = shown(e.value * 1e6);
+                    return if e.requirement.contains("half the domain") {
+                        self.at(
+                            &["channel.re_tau", "particles.tau_plus"],
+                            format!(
+                                "`channel.re_tau` = {}: the channel, 2 Re_tau wall units high, must be more than twice \
+                                 as high as its largest particle, {size} um across (`particles.tau_plus`)",
+                                shown(re_tau)
+                            ),
+                        )
+                    } else {
+                        let message = format!("`particles.tau_plus`: a particle of {size} um {}", e.requirement);
+                        self.at(&["particles.tau_plus"], message)
+                    };
+                }
+            }
+            _ => {}
+        }
         let keys: &[&str] = match e.field.as_str() {
             "size.x" | "size.y" | "size.z" => &["room.size"],
             "dt" => &["run.dt", "run.dt_plus"],
@@ -363,7 +400,7 @@ fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<(T, SceneSource), E
             None => format!("{}: {message}", path.display()),
         }
     })?;
-    Ok((file, SceneSource { name: path.display().to_string(), text }))
+    Ok((file, SceneSource { name: path.display().to_string(), text, re_tau: None }))
 }
 
 /// The line (from 1) of a byte offset into `text`.
@@ -633,6 +670,11 @@ fn openings(src: &SceneSource, entries: &[Spanned<OpeningFile>], geometry: &Geom
         let index: Option<usize> =
             e.field.strip_prefix("openings[").and_then(|rest| rest.split(']').next()).and_then(|i| i.parse().ok());
         match index {
+            // The entry as a whole: it overlaps the one the value numbers.
+            Some(k) if !e.field.contains('.') => at(
+                entries[k].span().start,
+                format!("`openings[{k}]` overlaps `openings[{}]` on the same wall", e.value),
+            ),
             Some(k) => {
                 let o = entries[k].get_ref();
                 let key = e.field.rsplit('.').next().unwrap_or("");
@@ -815,8 +857,13 @@ pub fn room_scene(path: Option<&Path>) -> Result<RoomScene, Error> {
 /// of the run's errors).
 pub fn channel(path: Option<&Path>) -> Result<(ChannelStudy, SceneSource), Error> {
     let mut study = ChannelStudy::default();
-    let Some(path) = path else { return Ok((study, SceneSource::built_in("the built-in channel"))) };
-    let (file, src): (ChannelFile, SceneSource) = read(path)?;
+    let Some(path) = path else {
+        // Half the height in wall units.
+        let unit = study.scene.air.kinematic_viscosity() / study.scene.flow.friction_velocity().unwrap_or(1.0);
+        let re_tau = study.scene.geometry.size()[2] / 2.0 / unit;
+        return Ok((study, SceneSource { re_tau: Some(re_tau), ..SceneSource::built_in("the built-in channel") }));
+    };
+    let (file, mut src): (ChannelFile, SceneSource) = read(path)?;
     let scene = &mut study.scene;
     apply_air(scene, &file.air);
     let u_star = file.channel.friction_velocity.unwrap_or(scene.flow.friction_velocity().unwrap_or(0.3));
@@ -826,6 +873,7 @@ pub fn channel(path: Option<&Path>) -> Result<(ChannelStudy, SceneSource), Error
             return Err(src.at(&[key], format!("`{key}` = {v} must be finite and positive")));
         }
     }
+    src.re_tau = Some(re_tau);
     let unit = scene.air.kinematic_viscosity() / u_star;
     let time = unit / u_star;
     scene.geometry = Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 2.0 * re_tau * unit };
@@ -1294,6 +1342,26 @@ mod tests {
             message.starts_with(" line 8: `dt` = -") && message.ends_with(" must be finite and positive"),
             "{message}"
         );
+    }
+
+    /// Errors of what the file gives as a whole, or through other keys, name the keys it wrote.
+    #[test]
+    fn errors_name_the_keys_the_file_wrote() {
+        let filled = "[[furnishings]]\nlow = [0.001, 0.001, 0.001]\nhigh = [1.999, 1.999, 1.999]\n";
+        let message = room_error("filled", filled);
+        assert!(message.starts_with(" line 8: `[[furnishings]]` take up 99.7"), "{message}");
+        assert!(!message.contains("particles.region"), "{message}");
+        let shallow = "[channel]\nre_tau = 0.5\n[particles]\ntau_plus = [100.0]\ncount = 10\n";
+        let message = error("shallow", shallow, "channel");
+        assert!(
+            message.starts_with(" line 2: `channel.re_tau` = 0.5: the channel, 2 Re_tau wall units high, must be"),
+            "{message}"
+        );
+        assert!(message.contains("its largest particle, 73.6924 um across (`particles.tau_plus`)"), "{message}");
+        let heavy = "[channel]\nre_tau = 150.0\n[particles]\ntau_plus = [30000.0]\ncount = 10\n";
+        let message = error("heavy", heavy, "channel");
+        assert!(message.starts_with(" line 4: `particles.tau_plus`: a particle of "), "{message}");
+        assert!(message.contains(" um must be at most 1 mm"), "{message}");
     }
 
     /// A key the file leaves out is the default's: no line (none in the file is the key's).

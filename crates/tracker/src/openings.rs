@@ -239,6 +239,14 @@ pub fn validate(openings: &[Opening], geometry: &Geometry) -> Result<(), SceneEr
                     requirement: "must be finite and positive",
                 });
             }
+            // Larger than its wall: no centre would do, the size is at fault.
+            if o.size[i] > size[axes[i]] {
+                return Err(SceneError {
+                    field: field("size"),
+                    value: o.size[i],
+                    requirement: "must fit within its wall: at most the wall's extent along that axis",
+                });
+            }
             let [lo, hi] = o.bounds()[i];
             if !(o.center[i].is_finite() && lo >= 0.0 && hi <= size[axes[i]]) {
                 return Err(SceneError {
@@ -249,8 +257,9 @@ pub fn validate(openings: &[Opening], geometry: &Geometry) -> Result<(), SceneEr
             }
         }
         if let Some(other) = openings[..k].iter().position(|p| p.overlaps(o)) {
+            // The entry as a whole: its centre and its size place it.
             return Err(SceneError {
-                field: field("center"),
+                field: format!("openings[{k}]"),
                 value: other as f64,
                 requirement: "must not overlap another opening (the one at this index) on the same wall",
             });
@@ -1214,9 +1223,13 @@ mod tests {
         let mut o = two_openings();
         o[0].center = [1.5, 2.4];
         assert_eq!(field(&o), "openings[0].center");
+        // Larger than the wall: its size, whatever its centre.
+        let mut o = two_openings();
+        o[0].size = [3.5, 0.2];
+        assert_eq!(field(&o), "openings[0].size");
         let mut o = two_openings();
         o.push(Opening::exhaust(5, [3.0, 0.3], [0.5, 0.25], q));
-        assert_eq!(field(&o), "openings[2].center", "overlaps the exhaust");
+        assert_eq!(field(&o), "openings[2]", "overlaps the exhaust");
         // Beside it, a second exhaust unbalances the flows.
         o[2].center = [2.5, 0.3];
         let e = validate(&o, &room).unwrap_err();
