@@ -198,6 +198,37 @@ fn computed_numbers_in_text_are_rounded() {
     assert!(pq.len() < 40, "{pq}");
 }
 
+/// A negative number is a value wherever an option takes one: the command's own check refuses
+/// it with one line and exit 1, not the parser as an unknown option with exit 2. A count's is
+/// not a count, as `1.5` is not: the parser says so of the value. An option's name still is no
+/// value.
+#[test]
+fn negative_numbers_are_values_everywhere() {
+    let refused = |args: &[&str], what: &str| {
+        user_error(args, what);
+        assert_eq!(depo(args).status.code(), Some(1), "depo {args:?}");
+    };
+    let law = ["--preset", "li1997-sio2"];
+    refused(
+        &[&["impact"][..], &law, &["--velocity", "0,0,-1", "--spin", "0,1,0", "--radius", "-1"]].concat(),
+        "--radius -1",
+    );
+    refused(&[&["curve"][..], &law, &["--vn-min", "-1"]].concat(), "--vn-min -1");
+    refused(&["fit", "examples/li1997-synthetic.csv", "--p", "-1"], "--p");
+    refused(&["bench", "--studies", "--scale", "-1"], "--scale -1");
+    refused(&["curve", "--k", "-1", "--kappa", "0.1", "--vc", "0.1"], "k1 = -1");
+    assert!(depo(&["impact", "--preset", "li1997-sio2", "--velocity", "-1,0,-1"]).status.success());
+    for (option, rest) in
+        [("--points", &["curve", "--preset", "li1997-sio2"][..]), ("--threads", &["bench"]), ("--n", &["bench"])]
+    {
+        let out = depo(&[rest, &[option, "-1"]].concat());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(&format!("invalid value '-1' for '{option} ")), "{option}: {stderr}");
+    }
+    // `--vn-min --format json`: the option is not taken for a value.
+    assert_eq!(depo(&[&["curve"][..], &law, &["--vn-min", "--format", "json"]].concat()).status.code(), Some(2));
+}
+
 #[test]
 fn user_errors_are_one_line() {
     user_error(&["curve", "--preset", "granite"], "unknown wall-law preset 'granite'");

@@ -22,13 +22,13 @@ use super::{check_memory, print_csv_rows, progress_bar, Error, Format};
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// Impacts per kernel call.
-    #[arg(long, default_value_t = 10_000_000)]
+    #[arg(long, default_value_t = 10_000_000, allow_negative_numbers = true)]
     n: usize,
     /// Threads, at most 1024 (as the C ABI's `depo_set_num_threads`).
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, allow_negative_numbers = true)]
     threads: usize,
     /// Interleaved rounds per kernel (medians are reported).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, allow_negative_numbers = true)]
     reps: usize,
     /// Only the kernels whose label contains this text.
     #[arg(long, default_value = "")]
@@ -48,7 +48,7 @@ pub struct BenchArgs {
     studies: bool,
     /// With --studies: particles per run as a multiple of the studies' first ones (1000 per
     /// room size; 4000 plain and 1000 with excursions per tau+).
-    #[arg(long, default_value_t = 1.0, requires = "studies")]
+    #[arg(long, default_value_t = 1.0, requires = "studies", allow_negative_numbers = true)]
     scale: f64,
 }
 

@@ -16,35 +16,35 @@ pub struct CaptureArgs {
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [1e-7, 3e-7, 1e-6, 3e-6, 1e-5, 3e-5, 1e-4])]
     diameters: Vec<f64>,
     /// Particle density (kg/m^3).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     density: f64,
     /// Particle Young's modulus (Pa).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     particle_modulus: f64,
     /// Particle Poisson ratio.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     particle_poisson: f64,
     /// Wall Young's modulus (Pa); inf for a rigid wall.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     wall_modulus: f64,
     /// Wall Poisson ratio.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     wall_poisson: f64,
     /// Work of adhesion w of the pair (J/m^2), best from pull-off measurements.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     work_of_adhesion: f64,
     /// Separation at contact z0 (m), for Tabor's parameter and the van der Waals well.
-    #[arg(long, default_value_t = CONTACT_SEPARATION, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = CONTACT_SEPARATION, allow_negative_numbers = true)]
     separation: f64,
     /// Limiting contact pressure (Pa, about 1.6 x the softer yield stress): reports whether the
     /// impact at the capture velocity stays elastic.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     yield_pressure: Option<f64>,
     /// Hamaker constant (J): adds Dahneke's rigid-particle capture velocity.
-    #[arg(long, requires = "restitution", allow_hyphen_values = true)]
+    #[arg(long, requires = "restitution", allow_negative_numbers = true)]
     hamaker: Option<f64>,
     /// Restitution without adhesion for Dahneke's theory, in (0, 1].
-    #[arg(long, requires = "hamaker", allow_hyphen_values = true)]
+    #[arg(long, requires = "hamaker", allow_negative_numbers = true)]
     restitution: Option<f64>,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]

@@ -13,13 +13,13 @@ pub struct CurveArgs {
     #[command(flatten)]
     law: LawArgs,
     /// Smallest normal speed |vn| (m/s).
-    #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     vn_min: f64,
     /// Largest normal speed |vn| (m/s).
-    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
     vn_max: f64,
     /// Number of speeds, spaced logarithmically.
-    #[arg(long, default_value_t = 60)]
+    #[arg(long, default_value_t = 60, allow_negative_numbers = true)]
     points: usize,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]

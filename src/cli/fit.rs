@@ -17,10 +17,10 @@ pub struct FitArgs {
     /// given as positive numbers.
     data: PathBuf,
     /// Exponent p of Eq. (8), held fixed unless --free-exponents (then the starting value).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     p: f64,
     /// Exponent q of Eq. (9), held fixed unless --free-exponents (then the starting value).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     q: f64,
     /// Fit p and q too.
     #[arg(long)]

@@ -20,7 +20,7 @@ pub struct ImpactArgs {
     #[arg(long, allow_hyphen_values = true)]
     spin: Option<String>,
     /// Particle radius (m), used with --spin.
-    #[arg(long, default_value_t = 1e-5)]
+    #[arg(long, default_value_t = 1e-5, allow_negative_numbers = true)]
     radius: f64,
     /// Wall normal into the fluid, NX,NY,NZ (normalised).
     #[arg(long, default_value = "0,0,1", allow_hyphen_values = true)]

@@ -74,22 +74,22 @@ pub struct LawArgs {
     #[arg(long, conflicts_with_all = ["k", "kappa", "vc"])]
     preset: Option<String>,
     /// Restitution velocity k = k1 = k2 (m/s).
-    #[arg(long, requires_all = ["kappa", "vc"], allow_hyphen_values = true)]
+    #[arg(long, requires_all = ["kappa", "vc"], allow_negative_numbers = true)]
     k: Option<f64>,
     /// Adhesion velocity kappa = kappa1 = kappa2 (m/s).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     kappa: Option<f64>,
     /// Capture velocity (m/s); <= 0: never captured by speed.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     vc: Option<f64>,
     /// Exponent p of Eq. (8) [default: the preset's, or 1].
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     p: Option<f64>,
     /// Exponent q of Eq. (9) [default: the preset's, or 1].
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     q: Option<f64>,
     /// Friction coefficient [default: the preset's (0), or 0].
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_negative_numbers = true)]
     mu: Option<f64>,
 }
 
