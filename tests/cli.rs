@@ -336,7 +336,12 @@ fn failed_and_degenerate_fits_are_errors_with_their_reason() {
     user_error(&["fit", example, "--q", "0"], "--q 0: the exponent must be finite and positive");
     user_error(&["fit", example, "--q=-1"], "--q -1");
     user_error(&["fit", example, "--p", "nan"], "--p NaN");
-    user_error(&["fit", example, "--q", "0.5", "--format", "csv"], "fit prints a table or JSON");
+    // CSV is not offered: neither by `--help` nor taken.
+    let help = ok_text(&["fit", "--help"]);
+    assert!(help.contains("[possible values: table, json]"), "{help}");
+    let out = depo(&["fit", example, "--q", "0.5", "--format", "csv"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("invalid value 'csv' for '--format <FORMAT>'"));
     for path in [same, high, low] {
         std::fs::remove_file(path).ok();
     }

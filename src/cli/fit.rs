@@ -2,14 +2,22 @@
 
 use std::path::{Path, PathBuf};
 
-use clap::Args;
+use clap::{Args, ValueEnum};
 use depo::wall_model::fit::{fit, Exponents, FitReport, Sample};
 use depo::wall_model::WallLaw;
 use serde::Serialize;
 
 use super::csv_input::CsvInput;
 use super::plot::{self, Series};
-use super::{shown, Error, Format};
+use super::{shown, Error};
+
+/// What `depo fit` prints: one fit, as a table or as JSON (not CSV, a format of rows).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FitFormat {
+    #[default]
+    Table,
+    Json,
+}
 
 #[derive(Args, Debug)]
 pub struct FitArgs {
@@ -25,9 +33,9 @@ pub struct FitArgs {
     /// Fit p and q too.
     #[arg(long)]
     free_exponents: bool,
-    /// Output format (table or json).
+    /// Output format.
     #[arg(long, value_enum, default_value_t)]
-    format: Format,
+    format: FitFormat,
     /// Also draw the data and the fitted e against |vn| into this SVG file.
     #[arg(long)]
     plot: Option<PathBuf>,
@@ -163,9 +171,8 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
         scene_entry: scene_entry(&args.surface, params.k1, params.kappa1, params.vc, params.p, params.q),
     };
     match args.format {
-        Format::Json => out!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?),
-        Format::Csv => return Err("fit prints a table or JSON, not CSV (--format json)".into()),
-        Format::Table => {
+        FitFormat::Json => out!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?),
+        FitFormat::Table => {
             out!("{} samples from {}", out.samples, args.data.display());
             out!("k      {:.6} +- {:.2e} m/s", out.k, out.k_se);
             out!("kappa  {:.6} +- {:.2e} m/s", out.kappa, out.kappa_se);
