@@ -713,7 +713,9 @@ fn room_decay_gives_no_z_without_deposits() {
     assert!(fit["total_per_hour"]["events"].as_u64().unwrap() > 0, "{fit}");
     assert!(fit["z"].is_null(), "{fit}");
     let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
-    let line = table.lines().rev().find(|l| l.trim_start().starts_with("1.000")).unwrap();
+    // The release table's line, before the steady state's.
+    let release = table.split("Under a continuous source").next().unwrap();
+    let line = release.lines().rev().find(|l| l.trim_start().starts_with("1.000")).unwrap();
     let cells: Vec<&str> = line.split_whitespace().collect();
     assert_eq!(&cells[1..5], ["<", cells[2], "[0]", "-"], "{line}");
 }
@@ -1358,7 +1360,7 @@ fn room_reports_a_size_distribution_mass_balance() {
     assert!(lines[3].starts_with("PM2.5,"));
     let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
     assert!(table.contains("Size distribution: 8 bins (density 1500, 2500 kg/m^3)"), "{table}");
-    assert_eq!(table.matches("particle density 2500 kg/m^3:").count(), 2, "in both per-size tables: {table}");
+    assert_eq!(table.matches("particle density 2500 kg/m^3:").count(), 3, "in the three per-size tables: {table}");
 }
 
 /// Measured size classes from a CSV file beside the scene: by edges, or by midpoints with
