@@ -18,7 +18,8 @@ fn an_impossible_tau_plus_is_an_error() {
     assert_eq!(err.value, 10.0);
 }
 
-/// Turbulent channel, impaction regime: `V+` at `tau+ = 10` within a factor of 2 of Wood (1981).
+/// Turbulent channel, impaction regime: `V+` at `tau+ = 10` within a factor of 2 of Wood (1981)
+/// and three standard errors (measured 1.24 +- 0.06 of Wood).
 #[test]
 fn channel_deposition_at_tau_plus_10_is_within_a_factor_2_of_wood() {
     let study = ChannelStudy { tau_plus: vec![10.0], count: 2000, target_error: None, ..ChannelStudy::default() };
@@ -26,7 +27,22 @@ fn channel_deposition_at_tau_plus_10_is_within_a_factor_2_of_wood() {
     let p = &points[0];
     assert!(p.v_plus.events > 100, "{p:?}");
     let ratio = p.v_plus.value / wood_by_hand(10.0);
-    assert!((0.5..2.0).contains(&ratio), "V+ {} against Wood {}: ratio {ratio}", p.v_plus.value, wood_by_hand(10.0));
+    // Wood's correlation is a fit through measurements scattered over a factor of 2 about it:
+    // that factor, and three standard errors of the run.
+    let band = 2.0 * (1.0 + 3.0 * p.v_plus.error / p.v_plus.value);
+    println!(
+        "tau+ 10: V+ {:.4e} +- {:.1e} against Wood {:.4e}: ratio {ratio:.3}, band {:.3}..{band:.3}",
+        p.v_plus.value,
+        p.v_plus.error,
+        wood_by_hand(10.0),
+        1.0 / band
+    );
+    assert!(
+        ratio < band && ratio * band > 1.0,
+        "V+ {} against Wood {}: ratio {ratio}",
+        p.v_plus.value,
+        wood_by_hand(10.0)
+    );
     assert!(
         (p.wood / wood_by_hand(10.0) - 1.0).abs() < 0.01,
         "the study's Wood {} against {}",
@@ -114,22 +130,54 @@ fn particle_by_hand(tau_plus: f64) -> (f64, f64) {
 /// the deposition velocity of gradient diffusion through the profile, with the concentration
 /// uniform beyond it. By the midpoint rule on 20000 log-spaced cells (converged to 1e-6).
 fn sublayer_conductance_by_hand(r_plus: f64, schmidt: f64) -> f64 {
-    let v_rms = |y: f64| 0.0116 * y * y / (1.0 + 0.203 * y + 0.0014 * y.powf(2.421));
-    let t_l = |y: f64| if y < 5.0 { 10.0 } else { 7.122 + 0.5731 * y - 0.00129 * y * y };
-    let (a, b, n) = (r_plus.ln(), 150f64.ln(), 20_000);
+    conductance_by_hand(r_plus, 150.0, schmidt, kallio_reeks_eddy_diffusivity)
+}
+
+/// `K+ = v+_rms^2 T_L+` of Kallio & Reeks' (1989) fits, typed here.
+fn kallio_reeks_eddy_diffusivity(y: f64) -> f64 {
+    let v_rms = 0.0116 * y * y / (1.0 + 0.203 * y + 0.0014 * y.powf(2.421));
+    let t_l = if y < 5.0 { 10.0 } else { 7.122 + 0.5731 * y - 0.00129 * y * y };
+    v_rms * v_rms * t_l
+}
+
+/// Lai & Nazaroff's (2000) eddy viscosity `nu_t / nu` near a wall, from which their
+/// correlation is integrated: `7.669e-4 y+^3` below `y+ = 4.3`, `1.00e-3 y+^2.8214` to 12.5,
+/// `1.07e-2 y+^1.8895` to 30.
+fn lai_nazaroff_eddy_diffusivity(y: f64) -> f64 {
+    if y < 4.3 {
+        7.669e-4 * y.powi(3)
+    } else if y < 12.5 {
+        1.00e-3 * y.powf(2.8214)
+    } else {
+        1.07e-2 * y.powf(1.8895)
+    }
+}
+
+/// `1 / int dy+ / (1/Sc + K+(y+))` from `from` to `to` by the midpoint rule on 20000
+/// log-spaced cells.
+fn conductance_by_hand(from: f64, to: f64, schmidt: f64, eddy: fn(f64) -> f64) -> f64 {
+    let (a, b, n) = (from.ln(), to.ln(), 20_000);
     let h = (b - a) / f64::from(n);
     let resistance: f64 = (0..n)
         .map(|i| {
             let y = (a + h * (f64::from(i) + 0.5)).exp();
-            y * h / (1.0 / schmidt + v_rms(y).powi(2) * t_l(y))
+            y * h / (1.0 / schmidt + eddy(y))
         })
         .sum();
     1.0 / resistance
 }
 
+/// The Schmidt number of a unit-density sphere of diameter `d` (m) in air at 20 C, as
+/// [`particle_by_hand`] works it out.
+fn schmidt_by_hand(d: f64) -> f64 {
+    let (mu, kt, lambda) = (1.81e-5, 1.380_649e-23 * 293.15, 0.0665e-6);
+    let slip = 1.0 + 2.0 * lambda / d * (1.142 + 0.558 * (-0.999 * d / (2.0 * lambda)).exp());
+    NU_BY_HAND / (kt * slip / (3.0 * std::f64::consts::PI * mu * d))
+}
+
 /// Turbulent channel, diffusion regime: `V+` at `tau+ = 0.1`, where Brownian diffusion through
-/// the sublayer carries half of Wood's value, within a factor of 2 of Wood, with no excursion
-/// weight given up (the study follows them to the end). Without Brownian motion, or with
+/// the sublayer carries half of Wood's value, within a factor of 2 of Wood and three standard
+/// errors (measured 0.58 +- 0.07 of Wood), with no excursion weight given up (the study follows them to the end). Without Brownian motion, or with
 /// excursions given up after 1e4 wall time units, it falls below half.
 #[test]
 fn channel_deposition_at_tau_plus_0_1_is_within_a_factor_2_of_wood() {
@@ -140,18 +188,36 @@ fn channel_deposition_at_tau_plus_0_1_is_within_a_factor_2_of_wood() {
     assert!(p.v_plus.events > 100 && p.v_plus.error < 0.15 * p.v_plus.value, "{p:?}");
     assert!(p.excursions.is_some_and(|share| share < 0.01), "weight given up: {:?}", p.excursions);
     let ratio = p.v_plus.value / wood_by_hand(0.1);
-    assert!((0.5..2.0).contains(&ratio), "V+ {} against Wood {}: ratio {ratio}", p.v_plus.value, wood_by_hand(0.1));
+    // Wood's correlation is a fit through measurements scattered over a factor of 2 about it:
+    // that factor, and three standard errors of the run.
+    let band = 2.0 * (1.0 + 3.0 * p.v_plus.error / p.v_plus.value);
+    println!(
+        "tau+ 0.1: V+ {:.4e} +- {:.1e} against Wood {:.4e}: ratio {ratio:.3}, band {:.3}..{band:.3}",
+        p.v_plus.value,
+        p.v_plus.error,
+        wood_by_hand(0.1),
+        1.0 / band
+    );
+    assert!(
+        ratio < band && ratio * band > 1.0,
+        "V+ {} against Wood {}: ratio {ratio}",
+        p.v_plus.value,
+        wood_by_hand(0.1)
+    );
 }
 
 /// Turbulent channel, diffusion regime (`tau+` 1e-4 and 1e-2, Schmidt numbers about 1.4e3 and
 /// 3.4e5, where inertia is negligible): particles cross the viscous sublayer by Brownian and
 /// turbulent diffusion, so `V+` is the layer's conductance. depo's Lagrangian `V+` is within
-/// 0.85-1.45 of the gradient-diffusion conductance of the same profiles worked out here
-/// (1.06 and 1.10, with errors of 4.1 and 5.8 %; a Brownian diffusivity half or double would
-/// move it 1.7 times, turbulence off far more), within a factor of 2 of Wood (1.54 and 1.14),
-/// and falls with the Schmidt number with an exponent between -0.8 and -0.6 (-0.72): Wood's
-/// and Papavergos & Hedley's correlations have -2/3, the model's eddy diffusivity, growing as
-/// `y+^4` from the wall, -3/4 in the limit of large `Sc`.
+/// three standard errors and 5 % of the gradient-diffusion conductance of the same profiles
+/// worked out here: the same physics, except that gradient diffusion is the limit of a
+/// Lagrangian time short against the time to cross the layer, and `T_L+ = 10` in the sublayer
+/// is not. Measured 1.013 +- 0.044 and 1.167 +- 0.074 (an rms profile 1.5 times its source
+/// raises the conductance by 1.5^(1/2) ~ 1.22 where `K+ ~ y+^4`; a Brownian diffusivity half
+/// or double would move it 1.7 times, turbulence off far more). Also within a factor of 2 of
+/// Wood (1.54 and 1.14), and falls with the Schmidt number with an exponent between -0.8 and
+/// -0.6 (-0.72): Wood's and Papavergos & Hedley's correlations have -2/3, the model's eddy
+/// diffusivity, growing as `y+^4` from the wall, -3/4 in the limit of large `Sc`.
 #[test]
 fn channel_diffusion_regime_follows_the_sublayer_conductance_and_the_schmidt_number() {
     let study = ChannelStudy {
@@ -170,8 +236,13 @@ fn channel_diffusion_regime_follows_the_sublayer_conductance_and_the_schmidt_num
         let v = p.v_plus.value;
         assert!(p.v_plus.events > 100 && p.v_plus.error < 0.12 * v, "{p:?}");
         let conductance = sublayer_conductance_by_hand(0.5 * d * 0.3 / NU_BY_HAND, schmidt);
-        let ratio = v / conductance;
-        assert!((0.85..1.45).contains(&ratio), "tau+ {}: V+ {v} against the conductance {conductance}", p.tau_plus);
+        let (ratio, error) = (v / conductance, p.v_plus.error / conductance);
+        let band = 3.0 * error + 0.05;
+        println!(
+            "tau+ {}: Sc {schmidt:.3e}, V+ {v:.4e} +- {:.1e}, conductance {conductance:.4e}: ratio {ratio:.4} +- {error:.4}, band 1 +- {band:.3}",
+            p.tau_plus, p.v_plus.error,
+        );
+        assert!((ratio - 1.0).abs() < band, "tau+ {}: V+ {v} against the conductance {conductance}", p.tau_plus);
         let wood = wood_by_hand(p.tau_plus);
         assert!((0.5..2.0).contains(&(v / wood)), "tau+ {}: V+ {v} against Wood {wood}", p.tau_plus);
         by_hand.push((schmidt, v));
@@ -182,19 +253,47 @@ fn channel_diffusion_regime_follows_the_sublayer_conductance_and_the_schmidt_num
 }
 
 /// Room: floor deposition of 3 um particles and the loss rate of 0.01 um particles (Brownian)
-/// within 30 % of Lai & Nazaroff (2000) for the same friction velocity, both resolved to a few
-/// per cent by the study's excursions.
+/// against Lai & Nazaroff (2000) for the same friction velocity, both resolved to a few per
+/// cent by the study's excursions, each within three standard errors and a model tolerance:
+///
+/// - 0.01 um: not the same physics near the wall. Lai & Nazaroff's eddy diffusivity grows as
+///   `7.669e-4 y+^3`, the room's (Kallio & Reeks') as about `1.35e-3 y+^4`; gradient
+///   diffusion through each from the particle's surface to `y+ = 30`, worked out here, gives
+///   conductances 1.19 apart at this Schmidt number (274): that spread is the tolerance.
+///   Measured 1.046 +- 0.037 (an error of 20 % in the correlation's constant put it at 1.24;
+///   the room's near-wall `T_L` x1.5 at 1.18: the latter is caught by the room profile's own
+///   unit test in `flow.rs`).
+/// - 3 um floor: the same physics, settling through a layer the turbulence keeps at the
+///   room's mean concentration (Lai & Nazaroff's floor velocity here is the settling
+///   velocity); the tolerance is the dispersion model's residual near a wall, 5 % of uniform
+///   for tracers (docs/validation.md). Measured 1.075 +- 0.063.
 #[test]
 fn room_deposition_matches_lai_nazaroff_where_it_is_measurable() {
     let study = RoomStudy { diameters: vec![0.01e-6, 3e-6], count: 600, target_error: None, ..RoomStudy::default() };
     let points = study.run(|_| {}).unwrap();
     let (ultrafine, coarse) = (&points[0], &points[1]);
     assert!(ultrafine.beta.error < 0.1 * ultrafine.beta.value, "{:?}", ultrafine.beta);
+    let (schmidt, r_plus) = (schmidt_by_hand(0.01e-6), 0.5 * 0.01e-6 * 0.01 / NU_BY_HAND);
+    let spread = conductance_by_hand(r_plus, 30.0, schmidt, kallio_reeks_eddy_diffusivity)
+        / conductance_by_hand(r_plus, 30.0, schmidt, lai_nazaroff_eddy_diffusivity)
+        - 1.0;
+    assert!((0.15..0.25).contains(&spread), "the eddy diffusivities' spread {spread} at Sc {schmidt}");
     let ratio = ultrafine.beta.value / ultrafine.model_beta;
-    assert!((0.7..1.3).contains(&ratio), "0.01 um: beta ratio {ratio} ({:?})", ultrafine.beta);
+    let error = ultrafine.beta.error / ultrafine.model_beta;
+    let band = 3.0 * error + spread.abs();
+    println!(
+        "0.01 um: beta ratio {ratio:.4} +- {error:.4}, band 1 +- {band:.3} (model spread {spread:.3}, Sc {schmidt:.0})"
+    );
+    assert!((ratio - 1.0).abs() < band, "0.01 um: beta ratio {ratio} +- {error} ({:?})", ultrafine.beta);
     assert!(coarse.floor.error < 0.1 * coarse.floor.value, "{:?}", coarse.floor);
     let ratio = coarse.floor.value / coarse.model.floor;
-    assert!((0.7..1.3).contains(&ratio), "3 um floor: ratio {ratio}");
+    let error = coarse.floor.error / coarse.model.floor;
+    let band = 3.0 * error + 0.05;
+    println!(
+        "3 um floor: ratio {ratio:.4} +- {error:.4}, band 1 +- {band:.3}; Lai & Nazaroff {:.4e} m/s",
+        coarse.model.floor
+    );
+    assert!((ratio - 1.0).abs() < band, "3 um floor: ratio {ratio} +- {error}");
     assert_eq!(coarse.ceiling.events, 0, "nothing settles upwards");
     assert!(coarse.ceiling.upper_bound > 0.0 && coarse.ceiling.upper_bound < coarse.floor.value);
 }
