@@ -355,8 +355,10 @@ fn z(a: Estimate, b: Estimate) -> f64 {
 /// The excursions' estimate is unbiased: where plain tracking reaches the steady state and
 /// resolves it, the two agree within three combined standard errors. Three regimes: Brownian
 /// diffusion to every surface of a room (0.01 um), settling onto its floor (3 um), and
-/// turbophoretic impaction in a channel (`tau+ = 10`); and settling in a ventilated room. A
-/// wrong weight (`1 / sqrt(sampling)`
+/// turbophoretic impaction in a channel (`tau+ = 10`, inertial: plain tracking resolved to
+/// 3-4 %, the excursions to 5 %; over six seeds 0.2 to 1.9 combined standard errors apart,
+/// the excursions lower in five, 0.95 of plain on average, so a bias of a few per cent is
+/// not excluded at this resolution); and settling in a ventilated room. A wrong weight (`1 / sqrt(sampling)`
 /// for `1 / sampling`) put them 9 combined standard errors apart at 0.01 um.
 #[test]
 fn excursions_agree_with_plain_tracking_where_both_resolve() {
@@ -369,6 +371,15 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
             split.excursions = Some(excursions);
             let split = run(&split, injection).unwrap();
             let (a, b) = (plain.deposition_velocity(walls), split.deposition_velocity(walls));
+            println!(
+                "plain {:.4e} +- {:.1e} ({} events), excursions {:.4e} +- {:.1e}: {:.2} combined standard errors apart",
+                a.value,
+                a.error,
+                a.events,
+                b.value,
+                b.error,
+                z(a, b)
+            );
             assert!(a.events > 150 && b.error < 0.1 * b.value, "plain {a:?}, excursions {b:?}");
             assert!(split.truncated_share() < 0.01, "{}", split.truncated_share());
             (a, b)
@@ -397,9 +408,13 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
     let mut scene = channel.scene.clone();
     scene.average_from = 0.5 * scene.duration;
     let d = depo_tracker::correlations::diameter_for_tau_plus(10.0, 1000.0, &scene.air, 0.3).unwrap();
-    let injection = Injection::new(400, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
+    // Inertial: resolved so that an error of 30 % in the excursions' deposited weight would
+    // be more than 3.5 combined standard errors (with 400 particles, 8 % and 30 % passed).
+    let injection = Injection::new(1000, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
     let excursions = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e4);
-    let (plain, split) = compare(&scene, &injection, excursions, 3000, &[0, 1]);
+    let (plain, split) = compare(&scene, &injection, excursions, 6000, &[0, 1]);
+    let combined = (plain.error / plain.value).hypot(split.error / split.value);
+    assert!(combined < 0.3 / 3.5, "tau+ 10: a combined relative error of {combined}");
     assert!(z(plain, split) < 3.0, "tau+ 10: plain {plain:?}, excursions {split:?}");
 }
 
