@@ -123,11 +123,6 @@ pub fn log_log(path: &Path, title: &str, x_label: &str, y_label: &str, series: &
     chart(path, title, (x_label, y_label), series, (true, true))
 }
 
-/// [`lines`] with a linear x axis and a logarithmic y axis (a decay curve is a straight line).
-pub fn semilog_y(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<(), Error> {
-    chart(path, title, (x_label, y_label), series, (false, true))
-}
-
 /// A series as drawn: the points the axes can show, and the legend entry that says what was
 /// left off.
 struct Drawn {
@@ -136,6 +131,8 @@ struct Drawn {
     errors: Vec<f64>,
     style: Style,
     color: RGBColor,
+    /// Points the axes cannot show.
+    hidden: usize,
 }
 
 fn plural(n: usize) -> &'static str {
@@ -174,7 +171,8 @@ fn prepare(series: &[Series], (log_x, log_y): (bool, bool)) -> Vec<Drawn> {
                 notes.push(format!("{non_finite} non-finite point{} not shown", plural(non_finite)));
             }
             let label = if notes.is_empty() { s.name.clone() } else { format!("{} ({})", s.name, notes.join(", ")) };
-            Drawn { label, points, errors, style: s.style, color: PALETTE[s.color.unwrap_or(i) % PALETTE.len()] }
+            let color = PALETTE[s.color.unwrap_or(i) % PALETTE.len()];
+            Drawn { label, points, errors, style: s.style, color, hidden: non_positive + non_finite }
         })
         .collect()
 }
@@ -193,6 +191,101 @@ const PLOT_HEIGHT: u32 = 500;
 const LEGEND_ROW: u32 = 20;
 const WIDTH: u32 = 800;
 
+/// The axes' ranges, `((x0, x1), (y0, y1))`, that show every point of `drawn` and its error
+/// bars; `None` when there is no point.
+fn ranges(drawn: &[&Drawn], (log_x, log_y): (bool, bool)) -> Option<((f64, f64), (f64, f64))> {
+    let xs = drawn.iter().flat_map(|s| s.points.iter().map(|p| p.0));
+    let ys = drawn.iter().flat_map(|s| {
+        let bars = s.points.iter().zip(&s.errors).flat_map(|(&(_, y), &e)| [low(y, e, log_y), y + e]);
+        s.points.iter().map(|p| p.1).chain(bars)
+    });
+    let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+    let (y0, y1) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| (a.min(y), b.max(y)));
+    if !(x0.is_finite() && x1.is_finite()) {
+        return None;
+    }
+    // One x value: widen the axis around it.
+    let x = match (x0 < x1, log_x) {
+        (true, _) => (x0, x1),
+        (false, true) => (x0 / 2.0, x1 * 2.0),
+        (false, false) => (x0 - 1.0, x1 + 1.0),
+    };
+    let y = match (log_y, y0 < y1) {
+        (true, true) => (y0 / 1.5, y1 * 1.5),
+        (true, false) => (y0 / 2.0, y1 * 2.0),
+        (false, true) => (y0.min(0.0), y1 * 1.05),
+        (false, false) => (0.0, 1.0),
+    };
+    Some((x, y))
+}
+
+/// Draws the series `drawn` on the chart context `$chart` (its error bars, then its points or
+/// line); `$fail` turns a drawing error into the command's.
+macro_rules! draw_series {
+    ($chart:expr, $drawn:expr, $log_y:expr, $fail:expr) => {{
+        for s in $drawn {
+            let color = s.color;
+            if !s.errors.is_empty() {
+                $chart
+                    .draw_series(s.points.iter().zip(&s.errors).map(|(&(x, y), &e)| {
+                        ErrorBar::new_vertical(x, low(y, e, $log_y), y, y + e, color.stroke_width(1), 8)
+                    }))
+                    .map_err(|e| $fail(&e))?;
+            }
+            match s.style {
+                Style::Markers => {
+                    $chart
+                        .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                        .map_err(|e| $fail(&e))?;
+                }
+                Style::UpperBounds => {
+                    $chart
+                        .draw_series(s.points.iter().map(|&p| {
+                            EmptyElement::at(p) + Polygon::new(vec![(-5, -4), (5, -4), (0, 5)], color.filled())
+                        }))
+                        .map_err(|e| $fail(&e))?;
+                }
+                Style::Line => {
+                    $chart
+                        .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
+                        .map_err(|e| $fail(&e))?;
+                }
+                Style::Dashed => {
+                    $chart
+                        .draw_series(DashedLineSeries::new(s.points.iter().copied(), 8, 5, color.stroke_width(2)))
+                        .map_err(|e| $fail(&e))?;
+                }
+            }
+        }
+    }};
+}
+
+/// The legend band's columns and rows for `entries`: two columns when the labels fit.
+fn legend_layout(entries: &[&Drawn]) -> (usize, u32) {
+    let longest = entries.iter().map(|d| d.label.chars().count()).max().unwrap_or(0);
+    let columns = if longest <= 48 { 2 } else { 1 };
+    (columns, entries.len().div_ceil(columns) as u32)
+}
+
+/// Draws the legend `entries` into the band `lower`, filled column by column.
+fn draw_legend<DB: DrawingBackend>(
+    lower: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[&Drawn],
+    width: u32,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let (columns, rows) = legend_layout(entries);
+    let column_width = (width as i32 - 75) / columns as i32;
+    let font = TextStyle::from(("sans-serif", 14).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    for (k, entry) in entries.iter().enumerate() {
+        let (row, column) = (k as u32 % rows.max(1), k as u32 / rows.max(1));
+        let x = 75 + column as i32 * column_width;
+        let y = (row * LEGEND_ROW + LEGEND_ROW / 2 + 5) as i32;
+        legend_symbol(lower, entry, (x, y))?;
+        lower.draw(&Text::new(entry.label.as_str(), (x + 40, y), font.clone()))?;
+    }
+    Ok(())
+}
+
 fn chart(
     path: &Path,
     title: &str,
@@ -202,34 +295,12 @@ fn chart(
 ) -> Result<(), Error> {
     let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
     let drawn = prepare(series, (log_x, log_y));
-    let xs = drawn.iter().flat_map(|s| s.points.iter().map(|p| p.0));
-    let ys = drawn.iter().flat_map(|s| {
-        let bars = s.points.iter().zip(&s.errors).flat_map(|(&(_, y), &e)| [low(y, e, log_y), y + e]);
-        s.points.iter().map(|p| p.1).chain(bars)
-    });
-    let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
-    let (y0, y1) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| (a.min(y), b.max(y)));
-    if !(x0.is_finite() && x1.is_finite()) {
-        return Err(format!("cannot draw {}: no range to plot", path.display()));
-    }
-    // One x value: widen the axis around it.
-    let (x0, x1) = match (x0 < x1, log_x) {
-        (true, _) => (x0, x1),
-        (false, true) => (x0 / 2.0, x1 * 2.0),
-        (false, false) => (x0 - 1.0, x1 + 1.0),
-    };
-    let (y0, y1) = match (log_y, y0 < y1) {
-        (true, true) => (y0 / 1.5, y1 * 1.5),
-        (true, false) => (y0 / 2.0, y1 * 2.0),
-        (false, true) => (y0.min(0.0), y1 * 1.05),
-        (false, false) => (0.0, 1.0),
-    };
-    // The legend: every series, also one with no point to show (its entry says why), in two
-    // columns when the labels fit, filled column by column.
+    // The legend: every series, also one with no point to show (its entry says why).
     let entries: Vec<&Drawn> = drawn.iter().collect();
-    let longest = entries.iter().map(|d| d.label.chars().count()).max().unwrap_or(0);
-    let columns = if longest <= 48 { 2 } else { 1 };
-    let rows = entries.len().div_ceil(columns) as u32;
+    let Some(((x0, x1), (y0, y1))) = ranges(&entries, (log_x, log_y)) else {
+        return Err(format!("cannot draw {}: no range to plot", path.display()));
+    };
+    let rows = legend_layout(&entries).1;
     let legend_height = if rows == 0 { 0 } else { rows * LEGEND_ROW + 15 };
 
     let root = SVGBackend::new(path, (WIDTH, PLOT_HEIGHT + legend_height)).into_drawing_area();
@@ -248,40 +319,7 @@ fn chart(
                 .y_label_formatter(&|v| tick(*v))
                 .draw()
                 .map_err(|e| fail(&e))?;
-            for s in &drawn {
-                let color = s.color;
-                if !s.errors.is_empty() {
-                    chart
-                        .draw_series(s.points.iter().zip(&s.errors).map(|(&(x, y), &e)| {
-                            ErrorBar::new_vertical(x, low(y, e, log_y), y, y + e, color.stroke_width(1), 8)
-                        }))
-                        .map_err(|e| fail(&e))?;
-                }
-                match s.style {
-                    Style::Markers => {
-                        chart
-                            .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                            .map_err(|e| fail(&e))?;
-                    }
-                    Style::UpperBounds => {
-                        chart
-                            .draw_series(s.points.iter().map(|&p| {
-                                EmptyElement::at(p) + Polygon::new(vec![(-5, -4), (5, -4), (0, 5)], color.filled())
-                            }))
-                            .map_err(|e| fail(&e))?;
-                    }
-                    Style::Line => {
-                        chart
-                            .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))
-                            .map_err(|e| fail(&e))?;
-                    }
-                    Style::Dashed => {
-                        chart
-                            .draw_series(DashedLineSeries::new(s.points.iter().copied(), 8, 5, color.stroke_width(2)))
-                            .map_err(|e| fail(&e))?;
-                    }
-                }
-            }
+            draw_series!(chart, &drawn, log_y, fail);
         }};
     }
     match (log_x, log_y) {
@@ -290,15 +328,93 @@ fn chart(
         (false, true) => draw!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())),
         (false, false) => draw!(builder.build_cartesian_2d(x0..x1, y0..y1)),
     }
-    let column_width = (WIDTH as i32 - 75) / columns as i32;
-    let font = TextStyle::from(("sans-serif", 14).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
-    for (k, entry) in entries.iter().enumerate() {
-        let (row, column) = (k as u32 % rows.max(1), k as u32 / rows.max(1));
-        let x = 75 + column as i32 * column_width;
-        let y = (row * LEGEND_ROW + LEGEND_ROW / 2 + 5) as i32;
-        legend_symbol(&lower, entry, (x, y)).map_err(|e| fail(&e))?;
-        lower.draw(&Text::new(entry.label.as_str(), (x + 40, y), font.clone())).map_err(|e| fail(&e))?;
+    draw_legend(&lower, &entries, WIDTH).map_err(|e| fail(&e))?;
+    root.present().map_err(|e| fail(&e))?;
+    Ok(())
+}
+
+/// One panel of [`small_multiples`]: its caption, its series, and lines of text written in
+/// its lower left corner.
+pub struct Panel {
+    pub name: String,
+    pub series: Vec<Series>,
+    pub notes: Vec<String>,
+}
+
+/// Draws each of `panels` as a small chart of its own, three or four to a row, all on the same
+/// axes (so that the panels compare at a glance), into the SVG file `path`. One legend below
+/// them, `key`, says what the series' styles and colours stand for (its series need no
+/// points); a panel whose points the axes cannot all show says how many under its notes.
+pub fn small_multiples(
+    path: &Path,
+    title: &str,
+    (x_label, y_label): (&str, &str),
+    panels: &[Panel],
+    key: &[Series],
+    (log_x, log_y): (bool, bool),
+) -> Result<(), Error> {
+    const PANEL: (u32, u32) = (270, 230);
+    let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
+    let drawn: Vec<Vec<Drawn>> = panels.iter().map(|p| prepare(&p.series, (log_x, log_y))).collect();
+    let all: Vec<&Drawn> = drawn.iter().flatten().collect();
+    let Some(((x0, x1), (y0, y1))) = ranges(&all, (log_x, log_y)) else {
+        return Err(format!("cannot draw {}: no range to plot", path.display()));
+    };
+    let columns = if panels.len() <= 9 { panels.len().clamp(1, 3) } else { 4 };
+    let rows = panels.len().div_ceil(columns).max(1);
+    let width = (columns as u32 * PANEL.0).max(WIDTH);
+    let key = prepare(key, (false, false));
+    let entries: Vec<&Drawn> = key.iter().collect();
+    let legend_rows = legend_layout(&entries).1;
+    let legend_height = if legend_rows == 0 { 0 } else { legend_rows * LEGEND_ROW + 15 };
+    let root = SVGBackend::new(path, (width, 40 + rows as u32 * PANEL.1 + legend_height)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let (head, rest) = root.split_vertically(40);
+    let centred = TextStyle::from(("sans-serif", 20).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
+    head.draw(&Text::new(title, ((width / 2) as i32, 20), centred)).map_err(|e| fail(&e))?;
+    let (grid, lower) = rest.split_vertically(rows as u32 * PANEL.1);
+    let grid = grid.margin(0, 0, 0, (width - columns as u32 * PANEL.0) as i32);
+    let areas = grid.split_evenly((rows, columns));
+    for ((panel, drawn), area) in panels.iter().zip(&drawn).zip(&areas) {
+        let hidden: usize = drawn.iter().map(|d| d.hidden).sum();
+        let mut notes = panel.notes.clone();
+        if hidden > 0 {
+            notes.push(format!("{hidden} point{} <= 0 not shown", plural(hidden)));
+        }
+        let mut builder = ChartBuilder::on(area);
+        builder.caption(panel.name.as_str(), ("sans-serif", 14)).margin(8).x_label_area_size(35).y_label_area_size(50);
+        macro_rules! draw {
+            ($chart:expr) => {{
+                let mut chart = $chart.map_err(|e| fail(&e))?;
+                chart
+                    .configure_mesh()
+                    .x_desc(x_label)
+                    .y_desc(y_label)
+                    .x_labels(5)
+                    .y_labels(8)
+                    .axis_desc_style(("sans-serif", 12))
+                    .label_style(("sans-serif", 11))
+                    .x_label_formatter(&|v| tick(*v))
+                    .y_label_formatter(&|v| tick(*v))
+                    .draw()
+                    .map_err(|e| fail(&e))?;
+                draw_series!(chart, drawn, log_y, fail);
+                chart.backend_coord(&(x0, y0))
+            }};
+        }
+        let (left, bottom) = match (log_x, log_y) {
+            (true, true) => draw!(builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())),
+            (true, false) => draw!(builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1)),
+            (false, true) => draw!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())),
+            (false, false) => draw!(builder.build_cartesian_2d(x0..x1, y0..y1)),
+        };
+        let font = TextStyle::from(("sans-serif", 12).into_font()).pos(Pos::new(HPos::Left, VPos::Bottom));
+        for (k, note) in notes.iter().rev().enumerate() {
+            let at = (left + 6, bottom - 5 - 14 * k as i32);
+            root.draw(&Text::new(note.as_str(), at, font.clone())).map_err(|e| fail(&e))?;
+        }
     }
+    draw_legend(&lower, &entries, width).map_err(|e| fail(&e))?;
     root.present().map_err(|e| fail(&e))?;
     Ok(())
 }

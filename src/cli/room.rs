@@ -1254,6 +1254,21 @@ fn steady_table(rows: &[Row]) {
 /// for coarse particles reaches 1e-138 m/s, nothing a room shows. The legend says where.
 const MODEL_FLOOR: f64 = 1e-10;
 
+/// `x` to `n` significant digits (all of its integer part), without trailing zeros: `12.3`
+/// for 12.2828.
+fn significant(x: f64, n: i32) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return x.to_string();
+    }
+    let decimals = (n - 1 - x.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 /// `n` log-spaced points from `from` to `to`; around `from` when the two are equal.
 pub fn log_grid(from: f64, to: f64, n: usize) -> Vec<f64> {
     let (from, to) = if from < to { (from, to) } else { (from / 2.0, to * 2.0) };
@@ -1374,35 +1389,41 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
         )?;
         eprintln!("figure: {}", indoor_outdoor.display());
     }
-    // The decay curves: the airborne share with its standard error per size, and the fitted
-    // line over its window in the same colour; the curves also as one CSV.
+    // The decay curves, a panel per size on shared axes (the sizes' curves, all near 1 where
+    // deposition is slow, would hide each other on one chart): the airborne share with its
+    // standard error, the fitted line over its window, and what ventilation alone would leave;
+    // the curves also as one CSV.
     let decay = dir.join("room-decay.svg");
-    let mut series = Vec::new();
+    let a = study.scene.exchange_rate();
+    let end = study.scene.duration;
+    let ventilation = |name: &str| Series::line(name, vec![(0.0, 1.0), (end / 60.0, (-a * end).exp())]).color(7);
+    let mut panels = Vec::new();
     // One row per size and time; the particle density beside the diameter, since a study
     // of several densities (distribution modes) has sizes of the same diameter.
     let mut text = String::from("diameter_um,density_kg_m3,time_s,airborne,error,count\n");
-    for (i, r) in rows.iter().enumerate() {
+    for r in rows {
         let c = &r.decay;
-        let label =
-            format!("{} um{}", (r.diameter_um * 1e4).round() / 1e4, density_label(rows, r.density, ", ", " kg/m^3"));
+        let label = format!("{} um{}", significant(r.diameter_um, 3), density_label(rows, r.density, ", ", " kg/m^3"));
         let minutes: Vec<f64> = c.times_s.iter().map(|t| t / 60.0).collect();
-        series.push(
-            Series::markers(
-                format!("{label} (depo, +- 1 s.e.)"),
-                minutes.iter().copied().zip(c.airborne.iter().copied()).collect(),
-            )
-            .with_errors(c.error.clone())
-            .color(i),
-        );
+        let mut series =
+            vec![Series::markers("depo", minutes.iter().copied().zip(c.airborne.iter().copied()).collect())
+                .with_errors(c.error.clone())
+                .color(0)];
+        let mut notes = Vec::new();
         if let (Some(f), Some(intercept)) = (&r.decay_fit, c.intercept) {
             let k = f.total_per_hour.value / 3600.0;
             let line = f.window_s.iter().map(|&t| (t / 60.0, (intercept - k * t).exp())).collect();
-            series.push(
-                Series::line(format!("{label}: fit, beta = {} /h", rate_cell(&f.beta_per_hour)), line)
-                    .dashed()
-                    .color(i),
-            );
+            series.push(Series::line("fit", line).dashed().color(1));
+            let beta = match f.beta_per_hour.upper_bound {
+                Some(bound) => format!("< {bound:.2e}"),
+                None => rate_cell(&f.beta_per_hour),
+            };
+            notes.push(format!("fitted beta {beta} /h"));
         }
+        if a > 0.0 {
+            series.push(ventilation("ventilation"));
+        }
+        panels.push(plot::Panel { name: label, series, notes });
         for k in 0..c.times_s.len() {
             text.push_str(&format!(
                 "{},{},{},{},{},{}\n",
@@ -1410,19 +1431,22 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
             ));
         }
     }
-    // What ventilation alone would leave, for reference.
-    let a = study.scene.exchange_rate();
+    let mut key = vec![
+        // A point for its error bar's symbol; the key draws no points.
+        Series::markers("airborne share (depo, +- 1 s.e.)", vec![(0.0, 1.0)]).with_errors(vec![0.0]).color(0),
+        Series::line("exponential fitted over its window, beta = its slope less a", Vec::new()).dashed().color(1),
+    ];
     if a > 0.0 {
-        let end = study.scene.duration;
-        series.push(
-            Series::line(
-                format!("ventilation alone, exp(-a t), a = {} /h", a * 3600.0),
-                vec![(0.0, 1.0), (end / 60.0, (-a * end).exp())],
-            )
-            .color(7),
-        );
+        key.push(ventilation(&format!("ventilation alone, exp(-a t), a = {} /h", shown(a * 3600.0))));
     }
-    plot::semilog_y(&decay, "Airborne share after a release", "time (min)", "N(t) / N(0)", &series)?;
+    plot::small_multiples(
+        &decay,
+        "Airborne share after a release, per particle size",
+        ("time (min)", "N(t) / N(0)"),
+        &panels,
+        &key,
+        (false, true),
+    )?;
     let curves = dir.join("room-decay.csv");
     std::fs::write(&curves, text).map_err(|e| format!("cannot write {}: {e}", curves.display()))?;
     // Deposition maps, one CSV per surface (walls, then furnishing faces, named as
@@ -1488,6 +1512,15 @@ mod tests {
     use super::*;
 
     /// Resolved: events, and where the model asks it, an error and a given-up share within 5 %.
+    #[test]
+    fn significant_digits_drop_trailing_zeros() {
+        assert_eq!(significant(12.2828, 3), "12.3");
+        assert_eq!(significant(0.011719, 3), "0.0117");
+        assert_eq!(significant(10.0, 3), "10");
+        assert_eq!(significant(0.3, 3), "0.3");
+        assert_eq!(significant(1234.6, 3), "1235");
+    }
+
     #[test]
     fn a_figure_is_unresolved_by_its_error_or_by_what_its_excursions_gave_up() {
         let m = |error: f64, events| Measured { value: 1e-6, error, events, upper_bound: None };
