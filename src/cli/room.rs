@@ -946,14 +946,14 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 let method =
                     if r.averaged_from_s == 0.0 && study.transient > 0.0 { format!("{method} +") } else { method };
                 out!(
-                    "{:>8.3}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>27} {:>9.2e}  {:>20} {:>7.3} {:>6.2}{}  {method}",
+                    "{:>8.3}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7.3} {:>6.2}{}  {method}",
                     r.diameter_um,
                     cell(r, "floor", &r.floor),
-                    r.lai_nazaroff.floor,
+                    model_cell(r.lai_nazaroff.floor),
                     cell(r, "ceiling", &r.ceiling),
-                    r.lai_nazaroff.ceiling,
+                    model_cell(r.lai_nazaroff.ceiling),
                     cell(r, "walls", &r.walls),
-                    r.lai_nazaroff.walls,
+                    model_cell(r.lai_nazaroff.walls),
                     rate_cell(&r.beta_per_hour),
                     r.lai_nazaroff.beta_per_hour,
                     r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour,
@@ -976,6 +976,12 @@ pub fn run(args: &RoomArgs) -> Result<(), Error> {
                 100.0 * studies::LONGEST_SHARE,
                 1 << studies::LONGEST_DOUBLINGS
             );
+            let model = |r: &Row| [r.lai_nazaroff.floor, r.lai_nazaroff.ceiling, r.lai_nazaroff.walls];
+            if rows.iter().flat_map(model).any(|v| v < MODEL_NONE) {
+                out!(
+                    "L&N < {MODEL_NONE:.0e}: Lai & Nazaroff give below {MODEL_NONE:.0e} m/s (the ceiling for coarse particles), no deposition."
+                );
+            }
             if rows.iter().any(|r| r.averaged_from_s == 0.0) && study.transient > 0.0 {
                 out!(
                     "+ every particle left the air before the averaging window opened: averaged over the release from t = 0 (what became of it, not a well-mixed room's rates; the times by which half and 90 % had deposited are in the release table)."
@@ -1250,6 +1256,21 @@ fn steady_table(rows: &[Row]) {
     }
 }
 
+/// Below this deposition velocity (m/s) the table prints Lai & Nazaroff's as `< 1e-30`: their
+/// ceiling velocity for coarse particles falls to 1e-138 m/s and to 0 in double precision,
+/// no deposit a room could show.
+const MODEL_NONE: f64 = 1e-30;
+
+/// Lai & Nazaroff's deposition velocity (m/s) in the table: `1.78e-5`, or `< 1e-30` below
+/// [`MODEL_NONE`].
+fn model_cell(v: f64) -> String {
+    if v < MODEL_NONE {
+        format!("< {MODEL_NONE:.0e}")
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
 /// Below this deposition velocity (m/s) a model curve is not drawn: Lai & Nazaroff's ceiling
 /// for coarse particles reaches 1e-138 m/s, nothing a room shows. The legend says where.
 const MODEL_FLOOR: f64 = 1e-10;
@@ -1512,6 +1533,13 @@ mod tests {
     use super::*;
 
     /// Resolved: events, and where the model asks it, an error and a given-up share within 5 %.
+    #[test]
+    fn a_vanishing_model_velocity_reads_as_a_bound() {
+        assert_eq!(model_cell(1.97e-138), "< 1e-30");
+        assert_eq!(model_cell(0.0), "< 1e-30");
+        assert_eq!(model_cell(1.78e-5), "1.78e-5");
+    }
+
     #[test]
     fn significant_digits_drop_trailing_zeros() {
         assert_eq!(significant(12.2828, 3), "12.3");
