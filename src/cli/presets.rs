@@ -61,11 +61,11 @@ pub fn run(args: &PresetsArgs) -> Result<(), Error> {
         Format::Csv => print_csv_rows(&rows)?,
         Format::Table => {
             out!(
-                "{:<21} {:>7} {:>6} {:>6} {:>4} {:>6} {:>6}  {:<34} {:<30} source",
+                "{:<21} {:>7} {:>11} {:>8} {:>4} {:>6} {:>6}  {:<34} {:<30} source",
                 "id",
-                "k",
-                "kappa",
-                "vc",
+                "k (m/s)",
+                "kappa (m/s)",
+                "vc (m/s)",
                 "q",
                 "R(vc)",
                 "table",
@@ -75,7 +75,7 @@ pub fn run(args: &PresetsArgs) -> Result<(), Error> {
             for r in &rows {
                 let opt = |x: Option<f64>| x.map(|v| format!("{v:.3}")).unwrap_or_else(|| "-".into());
                 out!(
-                    "{:<21} {:>7.1} {:>6.3} {:>6.3} {:>4} {:>6} {:>6}  {:<34} {:<30} {}",
+                    "{:<21} {:>7.1} {:>11.3} {:>8.3} {:>4} {:>6} {:>6}  {:<34} {:<30} {}",
                     r.id,
                     r.k,
                     r.kappa,
@@ -88,7 +88,9 @@ pub fn run(args: &PresetsArgs) -> Result<(), Error> {
                     r.source,
                 );
             }
-            out!("p = 1 and mu = 0 for every preset (the paper gives no friction coefficient).");
+            out!(
+                "q, R(vc) and table (Table 1's last column) are pure numbers; p = 1 and mu = 0 for every preset (the paper gives no friction coefficient)."
+            );
         }
     }
     Ok(())
