@@ -972,6 +972,9 @@ fn room_reports_furnishings() {
         assert!(figure.contains(&format!("\n{wall} (")), "{wall} in {figure}");
     }
     assert!(!figure.contains("table.bottom"), "only the tops are drawn");
+    // The boxes' footprints outlined on the floor, under a colour bar with its unit.
+    assert!(figure.contains("\ntable\n") && figure.contains("\nshelf\n"), "{figure}");
+    assert!(figure.contains("deposits per m^2"), "{figure}");
     // The furnishings beside the room's surfaces, and the ventilated room's C_in/C_out.
     let deposition = std::fs::read_to_string(plots.join("room-deposition.svg")).unwrap();
     assert!(deposition.contains("table (all faces) (depo, +- 1 s.e.)"), "{deposition}");

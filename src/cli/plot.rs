@@ -496,40 +496,90 @@ pub fn bars(path: &Path, title: &str, y_label: &str, groups: &[&str], series: &[
 
 /// One panel of [`maps`]: a named grid of counts, row `i` the `i`-th band from the bottom along
 /// the vertical axis `axes[0]`, column `j` the `j`-th along the horizontal axis `axes[1]`,
-/// each axis `(name, low, high)` in m.
+/// each axis `(name, low, high)` in m; and outlines drawn over it, each a name and its
+/// corners `[(horizontal, vertical); 2]` in m (an opening in the surface, a box on it).
 pub struct MapPanel {
     pub name: String,
     pub cells: Vec<Vec<u32>>,
     pub axes: [(&'static str, f64, f64); 2],
+    pub outlines: Vec<(String, [(f64, f64); 2])>,
 }
 
-/// Draws `panels` side by side, three to a row, each cell shaded by its count on one linear
-/// scale for all (white for none, darkest for the largest count), into the SVG file `path`.
-/// Each panel's caption names the surface and its deposits in all.
+/// The map's shade for the share `t` (0 to 1) of its largest value: white to dark blue.
+fn shade(t: f64) -> RGBColor {
+    let mix = |full: u8| (255.0 - t.clamp(0.0, 1.0) * (255.0 - f64::from(full))).round() as u8;
+    RGBColor(mix(0x08), mix(0x30), mix(0x6b))
+}
+
+/// Draws `panels` side by side, three to a row, each to scale (a metre as long across as up),
+/// each cell shaded by its deposits per m² on one linear scale for all (white for none,
+/// darkest for the most), with a colour bar below, into the SVG file `path`. Each panel's
+/// caption names the surface and its deposits in all; its outlines are drawn in red.
 pub fn maps(path: &Path, title: &str, panels: &[MapPanel]) -> Result<(), Error> {
     const PANEL: (u32, u32) = (300, 260);
+    const CAPTION: u32 = 22;
+    const MARGIN: u32 = 8;
+    const LABELS: (u32, u32) = (40, 30);
     let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
     let columns = panels.len().clamp(1, 3) as u32;
     let rows = panels.len().div_ceil(3).max(1) as u32;
-    let most = panels.iter().flat_map(|p| p.cells.iter().flatten()).copied().max().unwrap_or(0).max(1);
-    let root = SVGBackend::new(path, (columns * PANEL.0, 40 + rows * PANEL.1 + 30)).into_drawing_area();
+    // Deposits per m² of each cell.
+    let per_area = |p: &MapPanel| {
+        let [(_, d0, d1), (_, a0, a1)] = p.axes;
+        let n = p.cells.len().max(1) as f64;
+        let m = p.cells.first().map_or(1, Vec::len).max(1) as f64;
+        ((d1 - d0) / n * (a1 - a0) / m).max(f64::MIN_POSITIVE)
+    };
+    let most = panels
+        .iter()
+        .flat_map(|p| p.cells.iter().flatten().map(move |&c| f64::from(c) / per_area(p)))
+        .fold(0.0f64, f64::max);
+    let most = if most > 0.0 { most } else { 1.0 };
+    let width = columns * PANEL.0;
+    let root = SVGBackend::new(path, (width, 40 + rows * PANEL.1 + 50)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let (head, rest) = root.split_vertically(40);
     let centred = TextStyle::from(("sans-serif", 20).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
-    head.draw(&Text::new(title, ((columns * PANEL.0 / 2) as i32, 20), centred)).map_err(|e| fail(&e))?;
+    head.draw(&Text::new(title, ((width / 2) as i32, 20), centred)).map_err(|e| fail(&e))?;
     let (grid, foot) = rest.split_vertically(rows * PANEL.1);
-    let note = TextStyle::from(("sans-serif", 14).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
-    let scale = format!("deposits per cell: white 0, darkest {most} (one linear scale for every surface)");
-    foot.draw(&Text::new(scale.as_str(), (15, 15), note)).map_err(|e| fail(&e))?;
+    // The colour bar: white to the darkest shade, 0 to the most deposits per m².
+    let (bar_x, bar_w): (i32, i32) = (40, 240);
+    for k in 0..bar_w {
+        let t = f64::from(k) / f64::from(bar_w - 1);
+        let x = bar_x + k;
+        foot.draw(&Rectangle::new([(x, 8), (x + 1, 22)], shade(t).filled())).map_err(|e| fail(&e))?;
+    }
+    foot.draw(&Rectangle::new([(bar_x, 8), (bar_x + bar_w, 22)], BLACK.stroke_width(1))).map_err(|e| fail(&e))?;
+    let under = TextStyle::from(("sans-serif", 12).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
+    foot.draw(&Text::new("0", (bar_x, 26), under.clone())).map_err(|e| fail(&e))?;
+    let top = tick(most);
+    foot.draw(&Text::new(top.as_str(), (bar_x + bar_w, 26), under)).map_err(|e| fail(&e))?;
+    let note = TextStyle::from(("sans-serif", 13).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    let scale = "deposits per m^2 (one scale for every surface); red: openings and furnishings";
+    foot.draw(&Text::new(scale, (bar_x + bar_w + 25, 15), note)).map_err(|e| fail(&e))?;
     let areas = grid.split_evenly((rows as usize, columns as usize));
+    let caption = TextStyle::from(("sans-serif", 15).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
+    let label = TextStyle::from(("sans-serif", 11).into_font()).pos(Pos::new(HPos::Left, VPos::Top));
     for (panel, area) in panels.iter().zip(&areas) {
         let total: u64 = panel.cells.iter().flatten().map(|&c| u64::from(c)).sum();
         let [(down, d0, d1), (across, a0, a1)] = panel.axes;
-        let mut chart = ChartBuilder::on(area)
-            .caption(format!("{} ({total} deposit{})", panel.name, plural(total as usize)), ("sans-serif", 15))
-            .margin(8)
-            .x_label_area_size(30)
-            .y_label_area_size(40)
+        let text = format!("{} ({total} deposit{})", panel.name, plural(total as usize));
+        area.draw(&Text::new(text, ((PANEL.0 / 2) as i32, (CAPTION / 2) as i32), caption.clone()))
+            .map_err(|e| fail(&e))?;
+        let (_, body) = area.split_vertically(CAPTION);
+        // To scale: the plot box shrunk along one axis, centred.
+        let (w, h) = body.dim_in_pixel();
+        let (room_w, room_h) = (w - 2 * MARGIN - LABELS.0, h - 2 * MARGIN - LABELS.1);
+        let scale = (f64::from(room_w) / (a1 - a0)).min(f64::from(room_h) / (d1 - d0));
+        let extra_w = ((f64::from(room_w) - scale * (a1 - a0)) / 2.0).max(0.0) as u32;
+        let extra_h = ((f64::from(room_h) - scale * (d1 - d0)) / 2.0).max(0.0) as u32;
+        let mut chart = ChartBuilder::on(&body)
+            .margin_left(MARGIN + extra_w)
+            .margin_right(MARGIN + extra_w)
+            .margin_top(MARGIN + extra_h)
+            .margin_bottom(MARGIN + extra_h)
+            .x_label_area_size(LABELS.1)
+            .y_label_area_size(LABELS.0)
             .build_cartesian_2d(a0..a1, d0..d1)
             .map_err(|e| fail(&e))?;
         chart
@@ -546,19 +596,21 @@ pub fn maps(path: &Path, title: &str, panels: &[MapPanel]) -> Result<(), Error> 
         let n = panel.cells.len().max(1);
         let m = panel.cells.first().map_or(1, Vec::len).max(1);
         let (dd, da) = ((d1 - d0) / n as f64, (a1 - a0) / m as f64);
-        let shade = |c: u32| {
-            let t = f64::from(c) / f64::from(most);
-            let mix = |full: u8| (255.0 - t * (255.0 - f64::from(full))).round() as u8;
-            RGBColor(mix(0x08), mix(0x30), mix(0x6b))
-        };
+        let cell_area = per_area(panel);
         chart
             .draw_series(panel.cells.iter().enumerate().flat_map(|(i, row)| {
                 row.iter().enumerate().filter(|(_, &c)| c > 0).map(move |(j, &c)| {
                     let (y, x) = (d0 + i as f64 * dd, a0 + j as f64 * da);
-                    Rectangle::new([(x, y), (x + da, y + dd)], shade(c).filled())
+                    Rectangle::new([(x, y), (x + da, y + dd)], shade(f64::from(c) / cell_area / most).filled())
                 })
             }))
             .map_err(|e| fail(&e))?;
+        let red = PALETTE[1];
+        for (name, [(x0, y0), (x1, y1)]) in &panel.outlines {
+            chart.draw_series([Rectangle::new([(*x0, *y0), (*x1, *y1)], red.stroke_width(2))]).map_err(|e| fail(&e))?;
+            let (px, py) = chart.backend_coord(&(x0.min(*x1), y0.max(*y1)));
+            root.draw(&Text::new(name.as_str(), (px + 3, py + 3), label.clone().color(&red))).map_err(|e| fail(&e))?;
+        }
     }
     root.present().map_err(|e| fail(&e))?;
     Ok(())

@@ -1275,6 +1275,28 @@ fn model_cell(v: f64) -> String {
 /// for coarse particles reaches 1e-138 m/s, nothing a room shows. The legend says where.
 const MODEL_FLOOR: f64 = 1e-10;
 
+/// What a deposition map of the surface `name` outlines, in its in-plane coordinates in the
+/// order x, y, z: the openings in it, and on the floor the furnishings' footprints.
+fn outlines(study: &RoomStudy, r: &Row, name: &str) -> Vec<(String, [(f64, f64); 2])> {
+    let scene = &study.scene;
+    let mut out: Vec<(String, [(f64, f64); 2])> = scene
+        .openings
+        .iter()
+        .filter(|o| scene.surface_name(o.wall) == name)
+        .map(|o| {
+            let ([c0, c1], [s0, s1]) = (o.center, o.size);
+            let kind = format!("{:?}", o.kind).to_lowercase();
+            (kind, [(c0 - s0 / 2.0, c1 - s1 / 2.0), (c0 + s0 / 2.0, c1 + s1 / 2.0)])
+        })
+        .collect();
+    if name == "floor" {
+        for (box_, row) in scene.furnishings.iter().zip(&r.furnishings) {
+            out.push((row.name.clone(), [(box_.low[0], box_.low[1]), (box_.high[0], box_.high[1])]));
+        }
+    }
+    out
+}
+
 /// `x` to `n` significant digits (all of its integer part), without trailing zeros: `12.3`
 /// for 12.2828.
 fn significant(x: f64, n: i32) -> String {
@@ -1506,7 +1528,8 @@ fn plot_room(dir: &std::path::Path, study: &RoomStudy, rows: &[Row]) -> Result<(
             if m.kind == "wall" || name.ends_with(".top") {
                 let cells = (0..k).map(|j| (0..n).map(|i| m.cells[i][j]).collect());
                 let axes = [m.columns, m.rows];
-                panels.push(plot::MapPanel { name: name.clone(), cells: cells.collect(), axes });
+                let outlines = outlines(study, r, name);
+                panels.push(plot::MapPanel { name: name.clone(), cells: cells.collect(), axes, outlines });
             }
         }
         let figure = dir.join(format!("room-map-{label}um{}.svg", density_label(rows, r.density, "-", "kgm3")));
