@@ -204,9 +204,11 @@ fn ranges(drawn: &[&Drawn], (log_x, log_y): (bool, bool)) -> Option<((f64, f64),
     if !(x0.is_finite() && x1.is_finite()) {
         return None;
     }
-    // One x value: widen the axis around it.
+    // One x value: widen the axis around it. A log axis reaches a little beyond the points,
+    // so that a decade on the edge (0.01 from 1e-8 m in um, 0.009999999) keeps its label.
     let x = match (x0 < x1, log_x) {
-        (true, _) => (x0, x1),
+        (true, true) => (x0 / 1.1, x1 * 1.1),
+        (true, false) => (x0, x1),
         (false, true) => (x0 / 2.0, x1 * 2.0),
         (false, false) => (x0 - 1.0, x1 + 1.0),
     };
@@ -693,6 +695,18 @@ mod tests {
         // On a linear axis the same zeros are drawn and nothing is said.
         lines(&path, "t", "x", "y", &series, false).unwrap();
         assert!(!std::fs::read_to_string(&path).unwrap().contains("not shown"));
+        std::fs::remove_file(path).ok();
+    }
+
+    #[test]
+    fn a_decade_on_the_edge_of_a_log_axis_is_labelled() {
+        let path = scratch("edge");
+        let series = [Series::line("s", vec![(1e-8 * 1e6, 200.0), (10.0, 5000.0)])];
+        log_log(&path, "t", "x", "y", &series).unwrap();
+        let labels: Vec<String> = texts(&std::fs::read_to_string(&path).unwrap()).into_iter().map(|t| t.0).collect();
+        for decade in ["0.01", "0.1", "1", "10"] {
+            assert!(labels.contains(&decade.to_string()), "{decade} in {labels:?}");
+        }
         std::fs::remove_file(path).ok();
     }
 
