@@ -6,7 +6,7 @@
 //! - `fig8-size.svg`: capture velocity against diameter on log-log axes: the simulation rows of
 //!   Table 1, their fitted power law, and the `-5/6` (JKR) and `-5/2` reference slopes through
 //!   the 70 um row (Fig. 8).
-//! - `e-curves.svg`: `e` against `|vn|` for every preset with `vc > 0` (Figs. 3-5 without data;
+//! - `e-curves.svg`: `e` against `|vn|` for every preset (Figs. 3-5 without data;
 //!   `depo fit --plot` draws data and fit).
 
 use std::path::PathBuf;
@@ -73,19 +73,20 @@ pub fn run(args: &FiguresArgs) -> Result<(), Error> {
     plot::log_log(&path, "Capture velocity against diameter (Fig. 8)", "diameter (um)", "vc (m/s)", &series)?;
     out!("wrote {}", path.display());
 
-    // e(vn) of every preset that captures, each in its own colour; a preset with the same
-    // constants as one drawn before it (sim-70um is li1997-sio2's row) would hide under it,
-    // so it is dashed and its legend entry names the other.
-    let capturing: Vec<&presets::Preset> = PRESETS.iter().filter(|p| p.params.vc > 0.0).collect();
-    let series: Vec<Series> = capturing
+    // e(vn) of every preset, each in its own colour; a preset with the same constants as one
+    // drawn before it (sim-70um is li1997-sio2's row) would hide under it, so it is dashed and
+    // its legend entry names the other. The two with a negative vc (Dunn et al.'s tedlar and
+    // stainless steel) capture at no speed: their entries say so.
+    let series: Vec<Series> = PRESETS
         .iter()
         .enumerate()
         .map(|(i, p)| {
             let law = WallLaw::new(p.params).expect("presets are valid");
             let points = log_space(0.01, 20.0, 200).map(|v| (v, law.overall_restitution(v))).collect();
-            match capturing[..i].iter().find(|q| q.params == p.params) {
-                Some(twin) => Series::line(format!("{} (same constants as {})", p.id, twin.id), points).dashed(),
-                None => Series::line(p.id, points),
+            let name = if p.params.vc > 0.0 { p.id.to_string() } else { format!("{} (vc < 0: no capture)", p.id) };
+            match PRESETS[..i].iter().find(|q| q.params == p.params) {
+                Some(twin) => Series::line(format!("{name} (same constants as {})", twin.id), points).dashed(),
+                None => Series::line(name, points),
             }
         })
         .collect();
