@@ -142,19 +142,33 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
         let series: Vec<Series> = groups
             .iter()
             .map(|&(name, precision, general)| {
-                Series::markers(
-                    name,
-                    rows.iter()
-                        .filter(|r| r.kernel.starts_with(precision) && r.kernel.contains("pow") == general)
-                        .map(|r| (r.max_error.max(1e-17), r.fraction_of_ceiling))
-                        .collect(),
-                )
+                let own: Vec<&Row> = rows
+                    .iter()
+                    .filter(|r| r.kernel.starts_with(precision) && r.kernel.contains("pow") == general)
+                    .collect();
+                // A kernel that reproduces the reference exactly has no error to put on the
+                // log axis: drawn at the floor, and the legend says so.
+                let exact = own.iter().filter(|r| r.max_error < EXACT_AT).count();
+                let name = match exact {
+                    0 => name.to_string(),
+                    n => format!("{name} ({n} with error 0, drawn at {EXACT_AT:.0e})"),
+                };
+                Series::markers(name, own.iter().map(|r| (r.max_error.max(EXACT_AT), r.fraction_of_ceiling)).collect())
+                    .with_labels(own.iter().map(|r| short_label(&r.kernel, precision)).collect())
             })
             .filter(|s| !s.points.is_empty())
             .collect();
         plot_points(path, &series)?;
     }
     Ok(())
+}
+
+/// Where the kernels figure draws an error of 0 (below any rounding error of an f64 result).
+const EXACT_AT: f64 = 1e-17;
+
+/// A kernel's label beside its point: without the precision its series names.
+fn short_label(kernel: &str, precision: &str) -> String {
+    kernel.strip_prefix(precision).unwrap_or(kernel).trim_start_matches([' ', ',', '-', '_']).to_string()
 }
 
 fn plot_points(path: &std::path::Path, series: &[Series]) -> Result<(), Error> {
@@ -249,7 +263,15 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
                     1 => format!("{scheme} (1 unstable step size not shown)"),
                     n => format!("{scheme} ({n} unstable step sizes not shown)"),
                 };
-                Series::markers(name, points)
+                let name = if *scheme == "euler" { format!("{name}, at the same dt/tau") } else { name };
+                // Each point's dt / tau, written once: Euler runs at the exponential's steps, its
+                // points beside theirs.
+                let labels = runs
+                    .iter()
+                    .filter(|r| r.relative_error.is_some() && *scheme == "exponential")
+                    .map(|r| format!("dt/tau {:.2}", r.dt_over_tau))
+                    .collect();
+                Series::markers(name, points).with_labels(labels)
             })
             .collect();
         plot::log_log(

@@ -58,12 +58,14 @@ pub struct Series {
     pub errors: Vec<f64>,
     /// Index into the palette; by default the series' position on the chart.
     pub color: Option<usize>,
+    /// A name written beside each point, when not empty (which kernel, which step).
+    pub labels: Vec<String>,
 }
 
 impl Series {
     /// A solid line.
     pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Self { name: name.into(), points, style: Style::Line, errors: Vec::new(), color: None }
+        Self { name: name.into(), points, style: Style::Line, errors: Vec::new(), color: None, labels: Vec::new() }
     }
 
     /// A marker per point.
@@ -79,6 +81,11 @@ impl Series {
     /// With one standard error per point.
     pub fn with_errors(self, errors: Vec<f64>) -> Self {
         Self { errors, ..self }
+    }
+
+    /// With a name written beside each point.
+    pub fn with_labels(self, labels: Vec<String>) -> Self {
+        Self { labels, ..self }
     }
 
     /// Drawn dashed.
@@ -133,6 +140,8 @@ struct Drawn {
     color: RGBColor,
     /// Points the axes cannot show.
     hidden: usize,
+    /// The names of the points shown, or none.
+    labels: Vec<String>,
 }
 
 fn plural(n: usize) -> &'static str {
@@ -149,7 +158,7 @@ fn prepare(series: &[Series], (log_x, log_y): (bool, bool)) -> Vec<Drawn> {
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            let (mut points, mut errors) = (Vec::new(), Vec::new());
+            let (mut points, mut errors, mut labels) = (Vec::new(), Vec::new(), Vec::new());
             let (mut non_positive, mut non_finite) = (0, 0);
             for (k, &(x, y)) in s.points.iter().enumerate() {
                 if !(x.is_finite() && y.is_finite()) {
@@ -160,6 +169,9 @@ fn prepare(series: &[Series], (log_x, log_y): (bool, bool)) -> Vec<Drawn> {
                     points.push((x, y));
                     if let Some(&e) = s.errors.get(k) {
                         errors.push(e);
+                    }
+                    if let Some(l) = s.labels.get(k) {
+                        labels.push(l.clone());
                     }
                 }
             }
@@ -172,7 +184,7 @@ fn prepare(series: &[Series], (log_x, log_y): (bool, bool)) -> Vec<Drawn> {
             }
             let label = if notes.is_empty() { s.name.clone() } else { format!("{} ({})", s.name, notes.join(", ")) };
             let color = PALETTE[s.color.unwrap_or(i) % PALETTE.len()];
-            Drawn { label, points, errors, style: s.style, color, hidden: non_positive + non_finite }
+            Drawn { label, points, errors, style: s.style, color, hidden: non_positive + non_finite, labels }
         })
         .collect()
 }
@@ -222,9 +234,10 @@ fn ranges(drawn: &[&Drawn], (log_x, log_y): (bool, bool)) -> Option<((f64, f64),
 }
 
 /// Draws the series `drawn` on the chart context `$chart` (its error bars, then its points or
-/// line); `$fail` turns a drawing error into the command's.
+/// line, then the points' labels: to the right of a point, or to its left where `$right(x)`
+/// says it is near the right edge); `$fail` turns a drawing error into the command's.
 macro_rules! draw_series {
-    ($chart:expr, $drawn:expr, $log_y:expr, $fail:expr) => {{
+    ($chart:expr, $drawn:expr, $log_y:expr, $right:expr, $fail:expr) => {{
         for s in $drawn {
             let color = s.color;
             if !s.errors.is_empty() {
@@ -258,8 +271,24 @@ macro_rules! draw_series {
                         .map_err(|e| $fail(&e))?;
                 }
             }
+            let font = TextStyle::from(("sans-serif", 11).into_font()).color(&color);
+            $chart
+                .draw_series(s.points.iter().zip(&s.labels).map(|(&p, l)| {
+                    let (pos, dx) = if $right(p.0) { (HPos::Right, -7) } else { (HPos::Left, 7) };
+                    EmptyElement::at(p) + Text::new(l.clone(), (dx, 0), font.pos(Pos::new(pos, VPos::Center)))
+                }))
+                .map_err(|e| $fail(&e))?;
         }
     }};
+}
+
+/// How far along the axis from `x0` to `x1` the value `x` lies, 0 to 1.
+fn share_along(x: f64, (x0, x1): (f64, f64), log: bool) -> f64 {
+    if log {
+        (x / x0).ln() / (x1 / x0).ln()
+    } else {
+        (x - x0) / (x1 - x0)
+    }
 }
 
 /// The legend band's columns and rows for `entries`: two columns when the labels fit.
@@ -304,6 +333,7 @@ fn chart(
     };
     let rows = legend_layout(&entries).1;
     let legend_height = if rows == 0 { 0 } else { rows * LEGEND_ROW + 15 };
+    let near_right = |x: f64| share_along(x, (x0, x1), log_x) > 0.7;
 
     let root = SVGBackend::new(path, (WIDTH, PLOT_HEIGHT + legend_height)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
@@ -321,7 +351,7 @@ fn chart(
                 .y_label_formatter(&|v| tick(*v))
                 .draw()
                 .map_err(|e| fail(&e))?;
-            draw_series!(chart, &drawn, log_y, fail);
+            draw_series!(chart, &drawn, log_y, near_right, fail);
         }};
     }
     match (log_x, log_y) {
@@ -362,6 +392,7 @@ pub fn small_multiples(
     let Some(((x0, x1), (y0, y1))) = ranges(&all, (log_x, log_y)) else {
         return Err(format!("cannot draw {}: no range to plot", path.display()));
     };
+    let near_right = |x: f64| share_along(x, (x0, x1), log_x) > 0.7;
     let columns = if panels.len() <= 9 { panels.len().clamp(1, 3) } else { 4 };
     let rows = panels.len().div_ceil(columns).max(1);
     let width = (columns as u32 * PANEL.0).max(WIDTH);
@@ -400,7 +431,7 @@ pub fn small_multiples(
                     .y_label_formatter(&|v| tick(*v))
                     .draw()
                     .map_err(|e| fail(&e))?;
-                draw_series!(chart, drawn, log_y, fail);
+                draw_series!(chart, drawn, log_y, near_right, fail);
                 chart.backend_coord(&(x0, y0))
             }};
         }
@@ -707,6 +738,17 @@ mod tests {
         for decade in ["0.01", "0.1", "1", "10"] {
             assert!(labels.contains(&decade.to_string()), "{decade} in {labels:?}");
         }
+        std::fs::remove_file(path).ok();
+    }
+
+    #[test]
+    fn points_carry_their_labels() {
+        let path = scratch("labels");
+        let series = [Series::markers("kernels", vec![(1e-17, 0.5), (1e-6, 0.2)])
+            .with_labels(vec!["exact".to_string(), "fast".to_string()])];
+        lines(&path, "t", "x", "y", &series, true).unwrap();
+        let labels: Vec<String> = texts(&std::fs::read_to_string(&path).unwrap()).into_iter().map(|t| t.0).collect();
+        assert!(labels.contains(&"exact".to_string()) && labels.contains(&"fast".to_string()), "{labels:?}");
         std::fs::remove_file(path).ok();
     }
 
