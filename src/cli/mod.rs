@@ -51,8 +51,23 @@ enum Command {
     /// Redraw the paper's Figs. 6 and 8 and the presets' e curves as SVG files.
     Figures(figures::FiguresArgs),
     /// Deposition in a room per particle size and surface, beside Lai & Nazaroff (2000).
+    ///
+    /// Reading the table: +- is one standard error of the estimate over the run's randomness
+    /// (delta method over the injected particles); [n] the deposit events it rests on; with
+    /// none, < the 95 % upper bound. "excursions": deposits counted by near-wall excursions, an
+    /// unbiased estimate of the steady deposition rate; in parentheses, when above 0.1 %, the
+    /// share of their weight given up at their longest duration, a bound on what that may miss.
+    /// That duration is 16000 wall time units, doubled while a pilot run or the size's run gave
+    /// up more than 2.5 % of the weight, up to 8 times that. L&N < 1e-30: Lai & Nazaroff give
+    /// below 1e-30 m/s (the ceiling for coarse particles), no deposition.
     Room(room::RoomArgs),
     /// V+ against tau+ in a turbulent channel, beside Wood (1981).
+    ///
+    /// Reading the table: +- is one standard error of the estimate over the run's randomness
+    /// (delta method over the injected particles); [n] the deposit events it rests on; with
+    /// none, < the 95 % upper bound. "excursions": deposits counted by near-wall excursions, an
+    /// unbiased estimate of the steady deposition rate; in parentheses, when above 0.1 %, the
+    /// share of their weight given up at their longest duration, a bound on what that may miss.
     Channel(channel::ChannelArgs),
     /// Kernel throughput against a copy kernel moving the same bytes, and each kernel's error.
     Bench(bench::BenchArgs),
