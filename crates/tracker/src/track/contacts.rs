@@ -256,14 +256,7 @@ pub(super) fn contacts<const EULER: bool>(
                     None => law.params().vc,
                 };
                 let result = law.impact_with_capture_velocity(v, n, vc);
-                let loss = energy_loss(&result);
-                let m = body.aero.mass;
-                w.energy += EnergyLoss {
-                    material: m * loss.material,
-                    adhesion: m * loss.adhesion,
-                    friction: m * loss.friction,
-                    deposition: m * loss.deposition,
-                };
+                w.energy += in_joules(energy_loss(&result), body.aero.mass);
                 if !result.velocity.iter().all(|c| c.is_finite()) {
                     return AfterContacts::Left(Fate::Escaped, elapsed, x);
                 }
@@ -279,6 +272,16 @@ pub(super) fn contacts<const EULER: bool>(
     // Still bouncing: at rest on the last wall it touched.
     tally[last_wall].resting += 1;
     AfterContacts::Left(Fate::Deposited(last_wall), elapsed, last_x)
+}
+
+/// A wall law's energy budget per unit mass (J/kg) for a particle of `mass` (kg), in J.
+pub(super) fn in_joules(loss: EnergyLoss<f64>, mass: f64) -> EnergyLoss<f64> {
+    EnergyLoss {
+        material: mass * loss.material,
+        adhesion: mass * loss.adhesion,
+        friction: mass * loss.friction,
+        deposition: mass * loss.deposition,
+    }
 }
 
 #[cfg(test)]

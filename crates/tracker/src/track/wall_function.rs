@@ -20,6 +20,7 @@ use depo_wall_model::energy::{energy_loss, EnergyLoss};
 use glam::DVec3;
 use rand::RngExt;
 
+use super::contacts::in_joules;
 use super::{Fate, Flyer, Needs, ParticleTally, Prepared, Record, Step, WallTally};
 use crate::noise::particle_rng;
 use crate::scene::WallBehaviour;
@@ -94,12 +95,7 @@ fn arrive(
         } else {
             w.captures += 1;
         }
-        w.energy += EnergyLoss {
-            material: mass * loss.material,
-            adhesion: mass * loss.adhesion,
-            friction: mass * loss.friction,
-            deposition: mass * loss.deposition,
-        };
+        w.energy += in_joules(loss, mass);
     }
     outcome
 }
