@@ -1,5 +1,7 @@
 //! Running the built `depo` command from the end-to-end tests.
 
+#![allow(dead_code)] // each test binary uses its own part
+
 use std::process::{Command, Output};
 
 use serde_json::Value;

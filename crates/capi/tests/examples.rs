@@ -155,6 +155,37 @@ fn c_example_runs_and_is_clean_under_valgrind() {
     }
 }
 
+/// Every entry point's results on fixed inputs, bit for bit, against those stored in
+/// `tests/golden/abi.txt`: a restructuring of the crates must leave the C ABI's answers
+/// unchanged. After a change that is meant to alter results, `DEPO_BLESS=1` writes the file anew
+/// (and the commit says why the numbers moved).
+#[test]
+fn abi_results_unchanged_bit_for_bit() {
+    if !have("cc") {
+        return;
+    }
+    let golden = root().join("crates/capi/tests/golden");
+    let exe = out_dir("golden").join("abi");
+    run(link_depo(
+        c_flags(Command::new("cc").args(["-std=c11", &include("crates/capi/include")]))
+            .arg(golden.join("abi.c"))
+            .arg("-o")
+            .arg(&exe),
+    )
+    .arg("-lm"));
+    let out = String::from_utf8(run(&mut Command::new(&exe)).stdout).unwrap();
+    let stored = golden.join("abi.txt");
+    if std::env::var_os("DEPO_BLESS").is_some_and(|v| v == "1") {
+        std::fs::write(&stored, &out).unwrap();
+        return;
+    }
+    let expected = std::fs::read_to_string(&stored).unwrap();
+    assert_eq!(out.lines().count(), expected.lines().count(), "abi.c printed another number of lines");
+    if let Some((i, (got, want))) = out.lines().zip(expected.lines()).enumerate().find(|(_, (a, b))| a != b) {
+        panic!("C ABI result changed at line {} of {}:\n  now:    {got}\n  stored: {want}", i + 1, stored.display());
+    }
+}
+
 #[test]
 fn c_example_links_statically() {
     if !have("cc") {
