@@ -4,52 +4,34 @@
 //! [`depo_wall_model`] at every wall contact, and the deposition statistics that building
 //! air-quality and aerosol studies ask for.
 //!
-//! How the parts fit:
+//! ## Layers
 //!
-//! - [`air`]: the gas and one particle in it: slip correction, relaxation time, settling,
-//!   Brownian diffusivity, finite-Reynolds drag.
-//! - [`geometry`]: a room (six walls) or a plane channel (two walls, periodic along and across).
-//! - [`flow`]: mean flow (still, uniform, Poiseuille, Reichardt's turbulent profile) and the
-//!   near-wall stochastic dispersion model, tabulated once per run.
-//! - [`intermittency`]: the alternative near-wall model of a channel's wall-normal velocity,
-//!   heavy-tailed with the flatness of channel DNS.
-//! - [`furnishing`]: solid boxes inside a room (tables, shelves), each face a surface with
-//!   its own wall behaviour and tally.
-//! - [`openings`]: supply and exhaust openings on a room's walls, and the potential flow
-//!   between them that carries air and particles from the supply to the exhaust.
-//! - [`scene`]: a whole run's setup: walls (sink, mirror or wall law), forces, integrator, time
-//!   step, injection; validated once.
-//! - `noise` (internal): each particle's random streams and its standard normal variates,
-//!   made a block of steps at a time by a vectorised ziggurat.
-//! - `track` (internal): one particle through the run: the exponential integrator, the
-//!   particle's [`Fate`]; in it `fluid` (the fluid velocity a particle sees), `contacts` (the
-//!   wall contacts within a step) and `lanes` (four particles side by side).
-//! - [`run`](mod@run): all particles across cores, reproducibly, and the [`Run`]'s statistics:
-//!   mass balance, deposition velocity and loss rate with their standard errors, deposition
-//!   maps.
-//! - [`decay`]: the airborne share after a release over time, and the loss rate fitted from
-//!   it as decay experiments fit theirs.
-//! - [`excursions`]: near-wall excursions, the variance reduction for rare deposition: an
-//!   unbiased estimate of the steady deposition rate from split copies of the particles that
-//!   enter a near-wall layer (in `track` as `excursions`).
-//! - [`allocation`]: how many excursions a study starts per class of crossing (floor,
-//!   ceiling, walls, furnishings), fewer where its figures have room to spare.
-//! - [`convergence`]: run time against error of the integrators over the step size.
-//! - [`efficiency`]: run time against statistical error of the studies' variance reduction,
-//!   beside the plain tracking it replaces.
-//! - [`studies`]: the room and channel studies, runs beside their correlations.
-//! - [`steady`]: the steady state under a continuous source (indoor emission or
-//!   infiltration), read off a release followed from its start.
-//! - [`distribution`]: size distributions (lognormal modes by number or mass, measured size
-//!   classes) through a room study: the mass deposited per surface, exhausted and airborne,
-//!   for all of it and for PM2.5 and PM10.
-//! - [`wall_function`]: deposition where the near-wall layer is not resolved: a particle in
-//!   a layer over the wall deposits with the probability a correlation's deposition velocity
-//!   gives (for the tracker's rooms and channels, and for host solvers through the C ABI).
-//! - [`correlations`]: what to compare with: Lai & Nazaroff (2000) for rooms, Wood (1981) and
-//!   Papavergos & Hedley (1984) for channels.
-//! - [`measurements`]: measured deposition beside them: Sippola & Nazaroff's (2004) duct
-//!   side walls.
+//! The crate is in five layers, each a folder; a module imports only from its own layer and
+//! those below it (`tests/layers.rs` checks it, and that no modules import each other round a
+//! cycle):
+//!
+//! - [`model`]: what is simulated. The domain ([`Geometry`]: a room or a plane channel), the
+//!   [`Air`] and one particle in it, the mean [`Flow`] as a scene states it, [`Furnishing`]s,
+//!   [`Opening`]s and the potential flow between them, what each surface does
+//!   ([`WallBehaviour`], [`WallFunction`]), the near-wall [`Excursions`] a scene asks for, the
+//!   [`Injection`], and the [`Scene`] that holds them, validated once in [`Scene::validate`].
+//! - [`physics`]: the physics of one particle: turbulence profiles and the dispersion model
+//!   tabulated once per run (Gaussian near-wall statistics), the intermittent near-wall model,
+//!   the deposition correlations and the wall function on them, random streams.
+//! - tracking (internal): one particle through a run: the step, its wall contacts, its
+//!   [`Fate`]; near-wall excursions and the wall function's layer; four particles side by side.
+//! - [`estimation`]: all particles across cores, reproducibly, and the [`Run`]'s statistics
+//!   (mass balance, deposition velocity and loss rate with their standard errors, deposition
+//!   maps); the excursions' calibration and allocation; decay fits; the integrators'
+//!   convergence.
+//! - [`studies`]: the room and channel studies beside their correlations, size
+//!   distributions, filtration, the steady state, the variance reduction's efficiency, and
+//!   measurements to compare with.
+//!
+//! A scene and an injection go down to the tracking layer through [`run()`]; a study calls
+//! [`run()`] per particle size and reads the [`Run`]s it returns. The modules' paths from before
+//! the layers (`depo_tracker::scene`, `depo_tracker::flow`, `depo_tracker::studies`, ...) are
+//! kept as aliases. docs/ARCHITECTURE.md draws the data flow.
 //!
 //! SI units throughout; `z` is up in a room and wall-normal in a channel.
 //!
@@ -66,28 +48,51 @@
 //! assert!(balance.deposited[0] > 30 && balance.deposited[0] < 90);
 //! ```
 
-pub mod air;
-pub mod allocation;
-pub mod convergence;
-pub mod correlations;
-pub mod decay;
-pub mod distribution;
-pub mod efficiency;
-pub mod excursions;
-pub mod filtration;
-pub mod flow;
-pub mod furnishing;
-pub mod geometry;
-pub mod intermittency;
-pub mod measurements;
-mod noise;
-pub mod openings;
-pub mod run;
-pub mod scene;
-pub mod steady;
+pub mod estimation;
+pub mod model;
+pub mod physics;
 pub mod studies;
-mod track;
-pub mod wall_function;
+mod tracking;
+
+// The modules' paths before the layers, kept for code and documents that name them.
+
+/// The gas and one particle in it: [`model::air`].
+pub mod air {
+    pub use crate::model::air::*;
+}
+/// Near-wall excursions: [`model::excursions`], calibrated by [`estimation::excursions`].
+pub mod excursions {
+    pub use crate::model::excursions::*;
+}
+/// The mean flow ([`model::flow`]), the turbulence profiles ([`physics::profiles`]) and the
+/// tabulated dispersion model ([`physics::turbulence`]).
+pub mod flow {
+    pub use crate::model::flow::*;
+    pub use crate::physics::profiles::*;
+}
+/// The whole setup of a run: [`model::scene`], with [`model::walls`]' behaviours and
+/// [`model::error`]'s error.
+pub mod scene {
+    pub use crate::model::error::*;
+    pub use crate::model::scene::*;
+    pub use crate::model::walls::WallBehaviour;
+}
+/// The deposition wall function: its settings ([`model::walls`]) and physics
+/// ([`physics::wall_function`]).
+pub mod wall_function {
+    pub use crate::model::walls::{Correlation, WallFunction};
+    pub use crate::physics::wall_function::*;
+}
+/// Openings ([`model::openings`]) and the potential flow between them
+/// ([`model::potential_flow`]).
+pub mod openings {
+    pub use crate::model::openings::*;
+    pub use crate::model::potential_flow::*;
+}
+pub use estimation::{allocation, convergence, decay, run};
+pub use model::{furnishing, geometry};
+pub use physics::{correlations, intermittency};
+pub use studies::{distribution, efficiency, filtration, measurements, steady};
 
 pub use air::{Aerodynamics, Air};
 pub use decay::{log_linear_fit, Comparison, DecayCurve, DecayFit, LogLinear};
@@ -98,5 +103,5 @@ pub use geometry::{Geometry, Orientation, Wall};
 pub use openings::{Opening, OpeningKind};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Estimate, Run};
 pub use scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
-pub use track::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};
+pub use tracking::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};
 pub use wall_function::{Correlation, WallFunction};

@@ -4,7 +4,7 @@
 
 use std::f64::consts::PI;
 
-use crate::air::{Aerodynamics, Air};
+use crate::model::air::{Aerodynamics, Air};
 
 /// Lai & Nazaroff (2000), *Modeling indoor particle deposition from turbulent flow onto smooth
 /// surfaces*, J. Aerosol Sci. 31: the deposition velocities (m/s) onto an upward-facing
@@ -148,8 +148,8 @@ pub fn diameter_for_tau_plus(tau_plus: f64, density: f64, air: &Air, friction_ve
 #[must_use]
 pub fn schmidt(diameter: f64, air: &Air) -> f64 {
     // D depends on size only, not on density.
-    let slip = crate::air::slip_correction(diameter, air.mean_free_path());
-    air.kinematic_viscosity() / crate::air::diffusivity(diameter, slip, air)
+    let slip = crate::model::air::slip_correction(diameter, air.mean_free_path());
+    air.kinematic_viscosity() / crate::model::air::diffusivity(diameter, slip, air)
 }
 
 /// The still-air Brownian deposition flux onto a floor with settling, from a uniform initial

@@ -17,7 +17,7 @@
 //! which the channel correlations rest, could not be read for their numbers; these are the
 //! measurements depo shows beside its channel study instead.
 
-use crate::air::{Aerodynamics, Air};
+use crate::model::air::{Aerodynamics, Air};
 
 /// One steel-duct test of Sippola & Nazaroff (2004): deposition onto the duct's side wall.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -45,65 +45,10 @@
 //! - Lai, A. C. K. & Nazaroff, W. W. (2000), *Modeling indoor particle deposition from
 //!   turbulent flow onto smooth surfaces*, J. Aerosol Sci. 31:463-476.
 
-use crate::air::{Aerodynamics, Air};
-use crate::correlations::{papavergos_hedley, wood, LaiNazaroff};
-use crate::geometry::Orientation;
-
-/// The correlation a wall function takes the deposition velocity from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Correlation {
-    /// Wood (1981), `V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2` (at most 0.13): fully developed
-    /// duct and channel flow, every surface alike (gravity not included).
-    Wood,
-    /// Papavergos & Hedley (1984): `0.065 Sc^(-2/3)`, `3.5e-4 tau+^2`, `0.18` by regime; as
-    /// [`Correlation::Wood`].
-    PapavergosHedley,
-    /// Lai & Nazaroff (2000): a room's floor, ceiling and walls by orientation, with settling
-    /// (Brownian and turbulent diffusion and gravity; no inertia).
-    LaiNazaroff,
-}
-
-impl Correlation {
-    /// Every correlation with its name as scene files and the command write it.
-    pub const NAMED: [(&'static str, Correlation); 3] = [
-        ("wood", Correlation::Wood),
-        ("papavergos-hedley", Correlation::PapavergosHedley),
-        ("lai-nazaroff", Correlation::LaiNazaroff),
-    ];
-
-    /// Its name (`wood`, `papavergos-hedley`, `lai-nazaroff`).
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        Self::NAMED.iter().find(|(_, c)| *c == self).map_or("", |(n, _)| n)
-    }
-}
-
-/// A deposition wall function on a scene's walls (see the module docs).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WallFunction {
-    /// Where the deposition velocity comes from.
-    pub correlation: Correlation,
-    /// The layer's thickness `y_w` in wall units, `y_w u* / nu` (30 by default: the bottom
-    /// of the logarithmic layer, where wall-function meshes put their first cell).
-    pub layer_plus: f64,
-}
-
-impl WallFunction {
-    /// The default layer, in wall units.
-    pub const LAYER_PLUS: f64 = 30.0;
-
-    /// `correlation` over a layer of [`WallFunction::LAYER_PLUS`].
-    #[must_use]
-    pub fn new(correlation: Correlation) -> Self {
-        Self { correlation, layer_plus: Self::LAYER_PLUS }
-    }
-
-    /// The layer's thickness, m, for friction velocity `u*` (m/s) in `air`.
-    #[must_use]
-    pub fn layer(&self, air: &Air, friction_velocity: f64) -> f64 {
-        self.layer_plus * air.kinematic_viscosity() / friction_velocity
-    }
-}
+use crate::model::air::{Aerodynamics, Air};
+use crate::model::geometry::Orientation;
+use crate::model::walls::Correlation;
+use crate::physics::correlations::{papavergos_hedley, wood, LaiNazaroff};
 
 /// The deposition velocity (m/s) that `correlation` gives onto a smooth surface facing
 /// `orientation`, for a particle `aero` (settling speed under the scene's gravity) in `air`
@@ -124,7 +69,7 @@ pub fn deposition_velocity(
         Correlation::PapavergosHedley => papavergos_hedley(tau_plus, schmidt) * friction_velocity,
         Correlation::LaiNazaroff => {
             let r_plus = 0.5 * aero.diameter * friction_velocity / nu;
-            let integral = crate::correlations::lai_nazaroff_integral(schmidt, r_plus);
+            let integral = crate::physics::correlations::lai_nazaroff_integral(schmidt, r_plus);
             let ln = LaiNazaroff::from_integral(integral, aero.settling_speed, friction_velocity);
             match orientation {
                 Orientation::Floor => ln.floor,
@@ -147,6 +92,7 @@ pub fn deposition_probability(deposition_velocity: f64, layer: f64, dt: f64) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::walls::WallFunction;
 
     #[test]
     fn the_probability_is_the_poisson_chance_of_the_layer_s_rate() {

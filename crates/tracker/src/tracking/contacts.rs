@@ -4,10 +4,10 @@
 use depo_wall_model::energy::{energy_loss, EnergyLoss};
 use glam::DVec3;
 
-use crate::furnishing::{Furnishing, ROOM_SURFACES};
-use crate::geometry::{Wall, WALL_AXES};
-use crate::openings::Opening;
-use crate::scene::WallBehaviour;
+use crate::model::furnishing::{Furnishing, ROOM_SURFACES};
+use crate::model::geometry::{Wall, WALL_AXES};
+use crate::model::openings::Opening;
+use crate::model::walls::WallBehaviour;
 
 use super::{relaxed, Body, Fate, Prepared, State, WallTally, BISECTIONS, MAX_CONTACTS};
 
@@ -70,7 +70,7 @@ impl<const EULER: bool> Flight<EULER> {
 }
 
 /// Whether a particle of contact radius `r` at `x` is clear of the domain's walls and of
-/// `boxes` (`p.boxes`, or those a [`Clearance`](crate::furnishing::Clearance) leaves).
+/// `boxes` (`p.boxes`, or those a [`Clearance`](crate::model::furnishing::Clearance) leaves).
 #[inline(always)]
 pub(super) fn inside(x: DVec3, r: f64, p: &Prepared<'_>, boxes: &[Furnishing]) -> bool {
     // Periodic axes have no bounds: `[-inf, inf]`.

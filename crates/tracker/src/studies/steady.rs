@@ -12,7 +12,7 @@
 //! The steady deposition velocity onto a surface of area `A` is then the flux over the mean
 //! concentration, `v_d = S P(s) / A / (S E[T] / V) = P(s) V / (A E[T])`, and with outdoor air
 //! entering at `Q = P a + ...` particles per second per outdoor concentration (see
-//! [`Filtration::entering`](crate::filtration::Filtration::entering)) the indoor/outdoor
+//! [`Filtration::entering`](crate::studies::filtration::Filtration::entering)) the indoor/outdoor
 //! ratio is `Q E[T]`.
 //!
 //! A particle still airborne at the run's end has its future taken from the room's late
@@ -22,8 +22,8 @@
 //! ([`SteadyState::beyond_run`]), the rest is the particles' own history. The standard errors
 //! are the delta method's over the independent particles.
 
-use crate::run::{Estimate, Run};
-use crate::track::Fate;
+use crate::estimation::run::{Estimate, Run};
+use crate::tracking::Fate;
 
 /// The steady state under a continuous source of one size (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,9 +48,9 @@ fn fate_of(run: &Run, s: usize) -> usize {
         return 3;
     }
     match w.orientation() {
-        crate::Orientation::Floor => 0,
-        crate::Orientation::Ceiling => 1,
-        crate::Orientation::Wall => 2,
+        crate::model::geometry::Orientation::Floor => 0,
+        crate::model::geometry::Orientation::Ceiling => 1,
+        crate::model::geometry::Orientation::Wall => 2,
     }
 }
 
@@ -101,7 +101,11 @@ impl SteadyState {
             upper_bound: f64::NAN,
         };
         let fates: [f64; 5] = std::array::from_fn(|k| samples.iter().map(|s| s.1[k]).sum::<f64>() / n);
-        let orientations = [crate::Orientation::Floor, crate::Orientation::Ceiling, crate::Orientation::Wall];
+        let orientations = [
+            crate::model::geometry::Orientation::Floor,
+            crate::model::geometry::Orientation::Ceiling,
+            crate::model::geometry::Orientation::Wall,
+        ];
         let deposition_velocity = std::array::from_fn(|k| {
             let area: f64 = run.walls_facing(orientations[k]).iter().map(|&w| run.walls[w].area).sum();
             // The particles it rests on: those deposited there, and those whose future there

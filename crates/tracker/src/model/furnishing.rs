@@ -63,8 +63,8 @@
 //! is the room's volume less the boxes' ([`free_volume`]), and it is the volume of the room's
 //! well-mixed concentration, its deposition velocities and loss rate.
 
-use crate::geometry::{greater, lesser, Orientation, Wall, WALL_AXES};
-use crate::scene::WallBehaviour;
+use crate::model::geometry::{greater, lesser, Orientation, Wall, WALL_AXES};
+use crate::model::walls::WallBehaviour;
 
 /// The names of a box's faces, in face order.
 pub const FACE_NAMES: [&str; 6] = ["bottom", "top", "x0", "x1", "y0", "y1"];
@@ -210,7 +210,7 @@ pub fn nearest_surfaces(x: [f64; 3], size: [f64; 3], boxes: &[Furnishing]) -> [(
 
 /// [`nearest_surfaces`], with the boxes farther than `within` (m) from `x` left out: where
 /// what is read at the distances is the same beyond `within` (a room's well-mixed core,
-/// [`Table::flat_from`](crate::flow::Table::flat_from)), such a box changes no read, and the
+/// [`Table::flat_from`](crate::physics::turbulence::Table::flat_from)), such a box changes no read, and the
 /// square root and the comparisons it takes are saved.
 #[inline]
 #[must_use]

@@ -21,27 +21,17 @@
 
 use rayon::prelude::*;
 
-use crate::geometry::{in_plane_axes, Orientation, Wall};
-use crate::scene::{Injection, Scene, SceneError, Scheme};
-use crate::track::{track, track_excursions, track_wall_function, Fate, ParticleTally, Prepared, Record, WallTally};
+use crate::model::error::SceneError;
+use crate::model::geometry::{in_plane_axes, Orientation, Wall};
+use crate::model::scene::{Injection, Scene, Scheme};
+use crate::tracking::{track, track_excursions, track_wall_function, Fate, ParticleTally, Prepared, Record, WallTally};
 
 /// Particles per chunk of work: fixed, so the sums do not depend on the thread count, and
 /// small, so that a run's last chunks end together on every thread (a study runs a size in
 /// up to three parts, each ending at a barrier).
 const CHUNK: usize = 8;
 
-/// The most `dt |d sigma / dy|` may be with the default scheme: beyond it the dispersion
-/// model's step leaves tracers far from well mixed near steep rms gradients. Tracers between
-/// mirrors in a room, within 2 cm of floor and ceiling: 1.01-1.03 times uniform at 0.003 and
-/// 0.014 (`dt` 0.01 and 0.05 s, default room; a million tracers at 0.05 s); with a core of
-/// 0.5 m/s, 1.24-1.31 at 0.05 itself (`dt` 0.025 s) and 1.6 at 0.1 (0.05 s), within 0.1 m.
-pub const MAX_STEP_GRADIENT: f64 = 0.05;
-
-/// [`MAX_STEP_GRADIENT`] for [`Scheme::Midpoint`], which reads the
-/// profiles half a step on: with a core of 0.5 m/s, tracers within 0.1 m of floor and ceiling
-/// 1.06 times uniform at 0.05 (`dt` 0.025 s) and 1.07 at 0.1 (0.05 s), against 1.59 with the
-/// default step at 0.1; with a core of 1 m/s at 0.2, 1.45.
-pub const MAX_STEP_GRADIENT_MIDPOINT: f64 = 0.1;
+pub use crate::tracking::{MAX_STEP_GRADIENT, MAX_STEP_GRADIENT_MIDPOINT};
 
 /// Tracks `injection` through `scene` on the current rayon pool.
 ///

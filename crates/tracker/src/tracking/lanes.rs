@@ -6,9 +6,9 @@ use glam::DVec3;
 use multiversion::multiversion;
 use multiversion::target::target_cfg_f;
 
-use crate::flow::FlowField;
+use crate::physics::turbulence::FlowField;
 #[cfg(doc)]
-use crate::flow::Table;
+use crate::physics::turbulence::Table;
 
 use super::contacts::{contacts, inside, wrap, AfterContacts, Flight};
 use super::fluid::{fluid_velocity, langevin_step, stress_part};
@@ -16,7 +16,7 @@ use super::{
     brownian_increment, inject, normals_per_step, relaxed, run_particle, wall_distance, Body, Fate, Injected, Prepared,
     Record, State, StepNormals, WallTally,
 };
-use crate::flow::tangential_products;
+use crate::physics::turbulence::tangential_products;
 
 /// Particles stepped side by side by [`run_lanes`].
 const WIDTH: usize = 4;
@@ -333,8 +333,7 @@ fn step_lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
 /// four lanes at once, so the same results bit for bit (the records of [`run_lanes`] are
 /// tested identical to [`run_particle`]'s). The compiler's vectorisation of `step_lanes` mixed
 /// 128- and 256-bit halves, gathered each variate lane by lane and kept the arrays on the
-/// stack: 269 -> 240 instructions per particle-step in the turbulent Brownian room, and one
-/// thread 1.08 times as fast (median of 8 alternating runs, 1.06-1.28).
+/// stack (the instruction counts and timings are in docs/performance-log.md).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn step_lanes_avx2<const BROWN: bool>(
@@ -476,9 +475,7 @@ fn free_bounds(p: &Prepared<'_>, axis: usize, r: f64) -> (f64, f64) {
 /// its [`FreeLanes`] box or not finite; returns the steps taken. Each step is [`relaxed`], as
 /// in [`run_particle`], so the lanes end bit for bit where the general step would take them;
 /// the loop keeps the lanes in registers and does nothing else (the drag-and-gravity bench
-/// scene on 2 cores: 188 million particle-steps/s one particle at a time, 375 million here;
-/// on one thread the AVX2 [`ends_free`] made it 1.6 times as fast again, median of six
-/// alternating runs).
+/// scene's speed with and without it is in docs/performance-log.md).
 #[inline(always)]
 fn fly_freely<const AVX2: bool>(
     x: &mut [[f64; WIDTH]; 3],
@@ -560,10 +557,11 @@ fn ends_free_avx2(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::flow::Flow;
-    use crate::geometry::Geometry;
-    use crate::noise::particle_rng;
-    use crate::scene::{Injection, Scene, SizeDistribution, WallBehaviour};
+    use crate::model::flow::Flow;
+    use crate::model::geometry::Geometry;
+    use crate::model::scene::{Injection, Scene, SizeDistribution};
+    use crate::model::walls::WallBehaviour;
+    use crate::physics::noise::particle_rng;
     use depo_wall_model::WallLaw;
     use rand::RngExt;
 

@@ -70,7 +70,7 @@
 //! The Student-t is this model's choice of family: the heavy-tailed distribution fixed by the
 //! variance and flatness alone, with no further constant.
 
-use crate::flow::{lagrangian_time, profile_at, wall_normal_rms};
+use crate::physics::profiles::{lagrangian_time, profile_at, wall_normal_rms};
 
 /// Flatness of the wall-normal velocity, `F(v)`, against `y+`: Moser, Kim & Mansour (1999),
 /// channel at `Re_tau = 178.12`, the half-channel profile `chan180.flat` (wall to centre).
@@ -484,7 +484,7 @@ mod tests {
         let model = Intermittent::channel(150.0, 1.0, 1.0, 0.2, true);
         let y = 15.0;
         let (mut w, mut m2, mut m4) = (0.0, 0.0, 0.0);
-        let mut rng = crate::noise::particle_rng(1, 0);
+        let mut rng = crate::physics::noise::particle_rng(1, 0);
         let n = 2_000_000;
         for i in 0..n + 1000 {
             w = model.step(y, 0.0, w, StandardNormal.sample(&mut rng));

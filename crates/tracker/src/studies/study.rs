@@ -17,18 +17,19 @@
 //! In a furnished room ([`Scene::furnishings`]) the excursions start at the furnishings'
 //! near-wall layers as at the walls' (their gap is to the nearest wall or box).
 
-use crate::air::Air;
-use crate::allocation::{self, Figure};
-use crate::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
-use crate::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
-use crate::excursions::{crossing_class, Excursions, Sweeps, CROSSING_CLASSES};
-use crate::filtration::Filtration;
-use crate::flow::Flow;
-use crate::geometry::{Geometry, Orientation};
-use crate::run::{run, run_more, Balance, Estimate, Run};
-use crate::scene::{Injection, Scene, SceneError, Scheme, SizeDistribution};
-use crate::steady::SteadyState;
-use crate::track::WallTally;
+use crate::estimation::allocation::{self, Figure};
+use crate::estimation::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
+use crate::estimation::run::{run, run_more, Balance, Estimate, Run};
+use crate::model::air::Air;
+use crate::model::error::SceneError;
+use crate::model::excursions::{crossing_class, Excursions, Sweeps, CROSSING_CLASSES};
+use crate::model::flow::Flow;
+use crate::model::geometry::{Geometry, Orientation};
+use crate::model::scene::{Injection, Scene, Scheme, SizeDistribution};
+use crate::physics::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood, LaiNazaroff};
+use crate::studies::filtration::Filtration;
+use crate::studies::steady::SteadyState;
+use crate::tracking::WallTally;
 
 /// A room study: one run per diameter in `scene` (a room with a turbulent-room flow).
 #[derive(Clone, Debug, PartialEq)]
@@ -349,9 +350,9 @@ pub struct RoomPoint {
 }
 
 /// The time by which `share` of `records` had deposited, s; `None` if they never did.
-fn deposited_by(records: &[crate::Record], share: f64) -> Option<f64> {
+fn deposited_by(records: &[crate::tracking::Record], share: f64) -> Option<f64> {
     let mut times: Vec<f64> =
-        records.iter().filter(|r| matches!(r.fate, crate::Fate::Deposited(_))).map(|r| r.time).collect();
+        records.iter().filter(|r| matches!(r.fate, crate::tracking::Fate::Deposited(_))).map(|r| r.time).collect();
     let needed = (share * records.len() as f64).ceil() as usize;
     if needed == 0 || times.len() < needed {
         return None;

@@ -25,9 +25,9 @@
 
 use std::time::Instant;
 
-use crate::run::Estimate;
-use crate::scene::SceneError;
-use crate::studies::{ChannelStudy, RoomStudy};
+use crate::estimation::run::Estimate;
+use crate::model::error::SceneError;
+use crate::studies::study::{ChannelStudy, RoomStudy};
 
 /// Below this many deposit events a run's own standard error is too rough to extrapolate
 /// from: a plain run's time is then projected from the reduced run's value, and a reduced

@@ -22,9 +22,9 @@ use rand::RngExt;
 
 use super::contacts::in_joules;
 use super::{Fate, Flyer, Needs, ParticleTally, Prepared, Record, Step, WallTally};
-use crate::noise::particle_rng;
-use crate::scene::WallBehaviour;
-use crate::wall_function::{deposition_probability, deposition_velocity};
+use crate::model::walls::WallBehaviour;
+use crate::physics::noise::particle_rng;
+use crate::physics::wall_function::{deposition_probability, deposition_velocity};
 
 /// Salt of the stream that draws a particle's arrivals at the walls.
 const ARRIVAL_SALT: u64 = 0x9e37_79b9_7f4a_7c15;

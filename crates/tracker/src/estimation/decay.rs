@@ -65,8 +65,8 @@
 //! of the difference over 400 seeds). `z` is the difference over it, left out when either
 //! estimate rests on no event or has no error.
 
-use crate::run::{binomial_error, delta_error, Estimate, Run};
-use crate::track::{Fate, Record};
+use crate::estimation::run::{binomial_error, delta_error, Estimate, Run};
+use crate::tracking::{Fate, Record};
 
 /// Intervals of a study's decay curve: 41 sample times from the release to the end of the run.
 pub const DECAY_INTERVALS: usize = 40;

@@ -54,10 +54,10 @@
 
 use std::f64::consts::{PI, SQRT_2};
 
-use crate::air::{slip_correction, Air};
-use crate::run::Estimate;
-use crate::scene::SceneError;
-use crate::studies::{RoomPoint, RoomStudy};
+use crate::estimation::run::Estimate;
+use crate::model::air::{slip_correction, Air};
+use crate::model::error::SceneError;
+use crate::studies::study::{RoomPoint, RoomStudy};
 
 /// The PM2.5 and PM10 cuts, aerodynamic diameter, m.
 pub const PM_CUTS: [f64; 2] = [2.5e-6, 10e-6];

@@ -20,7 +20,7 @@
 //! counted *exhausted*; a share `eta_r a_r / (a + eta_r a_r)` of those went to the filter, in
 //! expectation), and its decay curve falls at `a + eta_r a_r + beta`.
 
-use crate::scene::SceneError;
+use crate::model::error::SceneError;
 
 /// A filter's single-pass removal efficiency against particle diameter: `(diameter m,
 /// efficiency)` points, interpolated linearly in `ln d` between them and held constant beyond

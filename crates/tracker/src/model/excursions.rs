@@ -65,7 +65,7 @@
 //! reach a wall nor step over the turbulence's gradients:
 //!
 //! - along every walled axis, `dt_coarse |d sigma/dy|` is at most
-//!   [`MAX_STEP_GRADIENT`](crate::run::MAX_STEP_GRADIENT), what the scene's own step must meet;
+//!   [`MAX_STEP_GRADIENT`](crate::estimation::run::MAX_STEP_GRADIENT), what the scene's own step must meet;
 //! - the farthest the particle can move towards a wall in the step, `tau |v| + (tau +
 //!   dt_coarse) |u_f|` (its relaxation towards the fluid velocity `u_f = sigma zeta` it sees,
 //!   held over the step, plus settling) and five standard deviations of its Brownian
@@ -75,7 +75,7 @@
 //! step counts as `coarse_factor` steps towards [`Excursions::max_duration`]. Coarse steps are
 //! an approximation of the same dynamics, not a change of the estimator: what they cost in
 //! accuracy is the step's discretisation error, measured against the midpoint scheme at the
-//! scene's step (see [`CHANNEL_COARSE_FACTOR`](crate::studies::CHANNEL_COARSE_FACTOR) for the
+//! scene's step (see [`CHANNEL_COARSE_FACTOR`](crate::studies::study::CHANNEL_COARSE_FACTOR) for the
 //! channel study's figures); the first-order scheme in coarse steps was 40 % off and is not
 //! offered. Scenes with furnishings or openings take the scene's step throughout.
 //!
@@ -93,8 +93,7 @@
 //! deposits) to exposure (its airborne time in the window), summed over the injected
 //! particles, with the delta method's standard error over them: see [`crate::run`](mod@crate::run).
 
-use crate::run::run;
-use crate::scene::{Injection, Scene, SceneError};
+use crate::model::error::SceneError;
 
 /// Near-wall excursions (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
@@ -112,7 +111,7 @@ pub struct Excursions {
     /// surface ([`crossing_class`]: the floor, the ceiling, the walls, the furnishings' faces),
     /// the surface nearest where the crossing ends: a study runs fewer excursions where its
     /// figures are resolved with room to spare (see
-    /// [`RoomStudy`](crate::studies::RoomStudy)). Each excursion weighs one over its own
+    /// [`RoomStudy`](crate::studies::study::RoomStudy)). Each excursion weighs one over its own
     /// sampling, so any multipliers give the same expected deposits. 1 for every class in
     /// [`Excursions::in_wall_units`].
     pub class_sampling: [f64; CROSSING_CLASSES],
@@ -222,50 +221,10 @@ impl Excursions {
         }
         self.splitting.validate()
     }
-
-    /// These excursions with their splitting factors calibrated for `scene` and `injection`:
-    /// `rounds` pilot runs of `count` particles, each with the factors the one before found
-    /// ([`Splitting::calibrated`], at most `max` per level). The pilots use their own seed, so
-    /// the run that follows is as unbiased as with any fixed factors. Also the last pilot's
-    /// share of weight given up at [`Excursions::max_duration`]
-    /// ([`Run::truncated_share`](crate::Run::truncated_share)).
-    pub fn calibrated(
-        mut self,
-        scene: &Scene,
-        injection: &Injection,
-        count: usize,
-        rounds: usize,
-        max: u32,
-    ) -> Result<(Self, f64), SceneError> {
-        let mut pilot = scene.clone();
-        pilot.seed = scene.seed ^ PILOT_SALT;
-        let injection = Injection { count, ..*injection };
-        let mut truncated = 0.0;
-        for _ in 0..rounds {
-            pilot.excursions = Some(self.clone());
-            let result = run(&pilot, &injection)?;
-            let mut arrivals = [0.0; MAX_LEVELS];
-            let mut branches = [0u64; MAX_LEVELS];
-            let mut started = 0.0;
-            for p in &result.particles {
-                started += f64::from(p.excursions);
-                for k in 0..MAX_LEVELS {
-                    arrivals[k] += p.arrivals[k];
-                    branches[k] += p.branches[k];
-                }
-            }
-            self.splitting = self.splitting.calibrated(started, &arrivals, &branches, max);
-            truncated = result.truncated_share();
-        }
-        Ok((self, truncated))
-    }
 }
 
 /// The largest [`Excursions::coarse_factor`].
 pub const MAX_COARSE_FACTOR: u32 = 64;
-
-/// Salt of the pilot runs' seed.
-const PILOT_SALT: u64 = 0x3c6e_f372_fe94_f82b;
 
 /// Splitting toward the walls within the near-wall layer (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
@@ -372,6 +331,7 @@ impl Splitting {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::scene::{Injection, Scene};
 
     #[test]
     fn levels_count_the_distances_passed() {

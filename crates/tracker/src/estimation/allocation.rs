@@ -2,11 +2,11 @@
 //!
 //! A room study runs its first particles with the same sampling for every crossing into the
 //! near-wall layer, and then more particles until its worst figure reaches the target error
-//! ([`RoomStudy`](crate::studies::RoomStudy)). The other figures then come out better than
+//! ([`RoomStudy`](crate::studies::study::RoomStudy)). The other figures then come out better than
 //! they need, and the excursions that resolve them (the four walls' at 0.1 um, the floor's at
 //! 1 um, the ceiling's where its figure is too small to need resolving) take time for
 //! nothing. [`class_sampling`] lowers the sampling of each class of crossing
-//! ([`crossing_class`](crate::excursions::crossing_class): floor, ceiling, walls,
+//! ([`crossing_class`](crate::model::excursions::crossing_class): floor, ceiling, walls,
 //! furnishings) as far as every figure allows, from what the first particles showed, for the
 //! particles that follow.
 //!
@@ -29,9 +29,9 @@
 //! more by chance) adds a little spread it leaves out, small where deposits are rare. The
 //! study's rounds check the figures the particles actually give.
 
-use crate::excursions::CROSSING_CLASSES;
-use crate::run::{Estimate, Run};
-use crate::track::ParticleTally;
+use crate::estimation::run::{Estimate, Run};
+use crate::model::excursions::CROSSING_CLASSES;
+use crate::tracking::ParticleTally;
 
 /// A figure a study must resolve, as its first particles give it: its relative variance and
 /// each class of crossing's share of it.

@@ -1,31 +1,15 @@
 //! A scene: geometry, air, flow, forces, walls, time stepping, and the particles injected into
 //! it. Everything is checked once, in [`Scene::validate`]; the hot loop trusts it.
 
-use std::fmt;
-
-use depo_wall_model::{SizeDependence, WallLaw};
-
-use crate::air::{Air, STANDARD_GRAVITY};
-use crate::excursions::Excursions;
-use crate::flow::Flow;
-use crate::furnishing::{free_volume, Furnishing, FACE_NAMES, ROOM_SURFACES};
-use crate::geometry::{Geometry, Wall};
-use crate::openings::{self, Opening};
-use crate::wall_function::WallFunction;
-
-/// What a wall does with a particle that touches it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum WallBehaviour {
-    /// Every contact deposits: the perfect sink that deposition-velocity theories assume.
-    Sink,
-    /// Specular reflection, fluid fluctuation mirrored too: a symmetry plane (and the way to
-    /// check that tracers stay well mixed).
-    Reflect,
-    /// The Brach & Dunn law decides: rebound or capture. With `size`, each particle's capture
-    /// velocity follows its diameter ([`SizeDependence`], anchored at the law's own `vc`).
-    /// Spin is not tracked by the tracker; friction acts through the law's `mu`.
-    Law { law: WallLaw, size: Option<SizeDependence> },
-}
+use crate::model::air::{Air, STANDARD_GRAVITY};
+use crate::model::error::SceneError;
+use crate::model::excursions::Excursions;
+use crate::model::flow::Flow;
+use crate::model::furnishing::{free_volume, Furnishing, FACE_NAMES, ROOM_SURFACES};
+use crate::model::geometry::{Geometry, Wall};
+use crate::model::openings::{self, Opening};
+use crate::model::walls::WallBehaviour;
+use crate::model::walls::WallFunction;
 
 /// The drag law.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -65,21 +49,15 @@ pub enum Scheme {
     /// well-mixed drift), are read where the particle is half a step on, flying towards the
     /// fluid velocity seen at the start (a predictor), not where it starts. The default takes
     /// them at the start, which is first order in `dt` times the turbulence's gradients; this
-    /// is second order there. Between mirrors in a room whose core turbulence (0.5 m/s
-    /// blended over 0.25 m) makes `dt |d sigma/dy|` 0.1 at `dt = 0.05 s`, tracers within
-    /// 0.1 m of floor and ceiling were 1.59 times uniform with the default step and 1.07
-    /// with this one; the default room's `beta` with this scheme at `dt` 0.05, 0.1 and 0.2 s
-    /// agrees within its errors with the default scheme's at 0.01 s, where the default
-    /// scheme at 0.05 s was 9-14 % high at 0.01-0.3 um (docs/validation.md). The room study
-    /// uses it. In a room's turbulence (no mean profile, no correlated components) the
+    /// is second order there, so tracers stay well mixed and a room's `beta` holds at steps
+    /// several times longer (the room study uses it; figures in docs/validation.md, "The
+    /// time step"). In a room's turbulence (no mean profile, no correlated components) the
     /// predictor takes the fluctuation's scale `g sigma` where the last step read it rather
     /// than reading the profiles at the start: the predicted point moves by `O(dt^2)` (with
     /// Brownian motion, also by `O(dt^(3/2))` of zero mean), which keeps the step second
-    /// order, and each step reads the turbulence's profiles once instead of twice (between
-    /// those mirrors at `dt = 0.05 s`, 20000 tracers over 300 s, 1.07, 1.06 and 1.07 of
-    /// uniform within 0.1 m across x, y and z, against 1.11, 1.07 and 1.09 with the second
-    /// read; each +- 0.03). With a mean profile (a channel's) each step reads them twice.
-    /// Particles go one at a time (the tracker's lanes do not have it).
+    /// order, and each step reads the turbulence's profiles once instead of twice. With a
+    /// mean profile (a channel's) each step reads them twice. Particles go one at a time (the
+    /// tracker's lanes do not have it).
     Midpoint,
 }
 
@@ -549,28 +527,3 @@ fn positive(field: &str, v: f64) -> Result<(), SceneError> {
 /// (to about 800; Clift, Grace & Weber 1978); a larger one is an object, not an aerosol, and a
 /// diameter given in the wrong unit (1 for 1 um) is caught here rather than run.
 pub const LARGEST_PARTICLE: f64 = 1e-3;
-
-/// A scene value out of range.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SceneError {
-    /// The field, as a scene file names it (`flow.friction_velocity`).
-    pub field: String,
-    /// Its value.
-    pub value: f64,
-    /// What it must be.
-    pub requirement: &'static str,
-}
-
-impl SceneError {
-    pub(crate) fn new(field: &str, value: f64, requirement: &'static str) -> Self {
-        Self { field: field.to_string(), value, requirement }
-    }
-}
-
-impl fmt::Display for SceneError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "`{}` = {} {}", self.field, self.value, self.requirement)
-    }
-}
-
-impl std::error::Error for SceneError {}

@@ -9,13 +9,13 @@ use glam::DVec3;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::RngExt;
 
-use crate::excursions::{crossing_class, Excursions, CROSSING_CLASSES, FURNISHINGS_CLASS, MAX_LEVELS};
-use crate::furnishing::Furnishing;
-use crate::geometry::{greater, lesser};
-use crate::noise::{branch_rng, particle_rng, Normals};
+use crate::model::excursions::{crossing_class, Excursions, CROSSING_CLASSES, FURNISHINGS_CLASS, MAX_LEVELS};
+use crate::model::furnishing::Furnishing;
+use crate::model::geometry::{greater, lesser};
+use crate::physics::noise::{branch_rng, particle_rng, Normals};
 
 use super::{normals_per_step, wall_distance, Body, Fate, Flyer, Prepared, Record, Step, WallTally};
-use crate::run::MAX_STEP_GRADIENT;
+use crate::tracking::MAX_STEP_GRADIENT;
 
 /// What one injected particle contributed to a run's averaging window.
 #[derive(Clone, Debug, PartialEq)]
@@ -135,7 +135,7 @@ fn overlap(a: f64, b: f64, [from, to]: [f64; 2]) -> f64 {
 }
 
 /// Distance from the surface of a particle of radius `r` at `x` to the nearest wall or box
-/// of `boxes` (`p.boxes`, or those the particle's [`Clearance`](crate::furnishing::Clearance)
+/// of `boxes` (`p.boxes`, or those the particle's [`Clearance`](crate::model::furnishing::Clearance)
 /// leaves), m (infinite in a domain without walls); a box's is the Euclidean distance from
 /// `x` to it.
 #[inline]
@@ -203,7 +203,7 @@ fn box_free_flight_separation(b: &Furnishing, x: DVec3, v: DVec3, tau: f64) -> S
 /// far less likely to deposit than one coasting towards it.
 ///
 /// The boxes farther than the layer beyond the particle's reach (`tau |v|`) are left out
-/// where its [`Clearance`](crate::furnishing::Clearance) shows them to be: they could only
+/// where its [`Clearance`](crate::model::furnishing::Clearance) shows them to be: they could only
 /// set a gap beyond the layer, whose splitting level, 0, is the walls' then too.
 #[inline]
 fn free_flight_gap(p: &Prepared<'_>, excursions: &Excursions, flyer: &Flyer) -> f64 {
@@ -585,13 +585,13 @@ mod tests {
     /// `MAX_STEP_GRADIENT` (0.05) at 2 and above it at 4.
     #[test]
     fn coarse_steps_keep_clear_of_the_wall_and_of_the_buffer_layer() {
-        let mut scene = crate::studies::ChannelStudy::default().scene;
+        let mut scene = crate::studies::study::ChannelStudy::default().scene;
         let nu = scene.air.kinematic_viscosity();
         let u_star = 0.3;
         let unit = nu / u_star;
         scene.excursions =
             Some(Excursions { coarse_factor: 8, ..Excursions::in_wall_units(u_star, nu, 0.2, 3.0, 1e5) });
-        let d = crate::correlations::diameter_for_tau_plus(0.3, 1000.0, &scene.air, u_star).unwrap();
+        let d = crate::physics::correlations::diameter_for_tau_plus(0.3, 1000.0, &scene.air, u_star).unwrap();
         let injection = crate::Injection::new(1, crate::SizeDistribution::Monodisperse { diameter: d }, 1000.0);
         let p = Prepared::new(&scene, &injection).unwrap();
         let c = p.coarse.as_deref().expect("coarse steps prepared");
@@ -625,7 +625,7 @@ mod tests {
     fn boxes_a_clearance_leaves_out_change_no_read_contact_gap_or_level() {
         use super::super::contacts::inside;
         use super::super::fluid::furnished_fluid_velocity;
-        use crate::furnishing::Clearance;
+        use crate::model::furnishing::Clearance;
         use rand::RngExt;
 
         let mut scene = crate::Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 10.0);
@@ -726,7 +726,7 @@ mod tests {
                 }
                 flyer.x = DVec3::from_array(x);
                 flyer.v = DVec3::from_array(std::array::from_fn(|_| rng.random_range(-speed..speed)));
-                flyer.clearance = crate::furnishing::Clearance::around(x, p.boxes);
+                flyer.clearance = crate::model::furnishing::Clearance::around(x, p.boxes);
                 let inside = zone(&p, &excursions, &flyer) == Zone::Inside;
                 if surely_inside(&excursions, &flyer, free_flight_gap(&p, &excursions, &flyer)) {
                     assert!(inside, "d {diameter} at {x:?}, v {:?}", flyer.v);

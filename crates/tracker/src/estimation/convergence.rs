@@ -12,11 +12,11 @@
 
 use std::time::Instant;
 
-use crate::air::{Aerodynamics, Air, STANDARD_GRAVITY};
-use crate::flow::Flow;
-use crate::geometry::Geometry;
-use crate::run::{run, Run};
-use crate::scene::{Injection, Scene, Scheme, SizeDistribution};
+use crate::estimation::run::{run, Run};
+use crate::model::air::{Aerodynamics, Air, STANDARD_GRAVITY};
+use crate::model::flow::Flow;
+use crate::model::geometry::Geometry;
+use crate::model::scene::{Injection, Scene, Scheme, SizeDistribution};
 
 /// One scheme at one step size.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,7 +115,7 @@ fn relative_error(result: &Run, reference: &Run) -> f64 {
             travel += (b.position[k] - b.start[k]).powi(2);
         }
     }
-    if result.records.iter().any(|r| r.fate != crate::Fate::Airborne) {
+    if result.records.iter().any(|r| r.fate != crate::tracking::Fate::Airborne) {
         return f64::INFINITY;
     }
     (err / travel).sqrt()

@@ -3,9 +3,9 @@
 
 use glam::DVec3;
 
-use crate::flow::{tangential_products, Component, FlowField, Node, Table};
-use crate::furnishing::{nearest_surfaces_within, Furnishing};
-use crate::intermittency::Intermittent;
+use crate::model::furnishing::{nearest_surfaces_within, Furnishing};
+use crate::physics::intermittency::Intermittent;
+use crate::physics::turbulence::{tangential_products, Component, FlowField, Node, Table};
 
 use super::wall_distance;
 
@@ -212,7 +212,7 @@ mod tests {
         let (y0, r0, y1, r1) = (1.2991e-01, -0.4480, 1.4227e-01, -0.4459);
         let rho = r0 + (r1 - r0) * (20.0 / 150.0 - y0) / (y1 - y0);
         let u_rms = 0.4 * 20.0 / (1.0 + 0.0239 * 20f64.powf(1.496));
-        let mut rng = crate::noise::particle_rng(1, 0);
+        let mut rng = crate::physics::noise::particle_rng(1, 0);
         let mut normal = || -> f64 { StandardNormal.sample(&mut rng) };
         for (z, sign) in [(20.0, 1.0), (280.0, -1.0)] {
             let x = DVec3::new(1.0, 1.0, z);

@@ -59,7 +59,8 @@
 //! structure-of-arrays variant, with a Box-Muller generator, measured slower and was not kept.)
 //!
 //! ## Parts
-//! This module holds what a particle is ([`Record`], its constants, injection) and the
+//! The tracking layer: it may use the physics ([`crate::physics`]) and the model
+//! ([`crate::model`]), nothing above them. //! This module holds what a particle is ([`Record`], its constants, injection) and the
 //! one-particle loop (`run_particle`); `fluid` gives the fluid velocity a particle sees,
 //! `contacts` the wall contacts within a step, and `lanes` the same loop for four particles
 //! side by side.
@@ -71,16 +72,20 @@ use glam::DVec3;
 use rand::{Rng, RngExt};
 use rand_distr::{Distribution, LogNormal};
 
-use crate::air::{schiller_naumann, Aerodynamics};
-use crate::excursions::Excursions;
-use crate::flow::{Flow, FlowField};
-use crate::furnishing::{Clearance, Furnishing};
-use crate::geometry::Wall;
-use crate::intermittency::Intermittent;
-use crate::noise::{particle_rng, Normals};
-use crate::openings::{FlowCell, Opening, OpeningKind, PotentialFlow, CELLS_ALONG_LONGEST};
-use crate::scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
-use crate::wall_function::Correlation;
+use crate::model::air::{schiller_naumann, Aerodynamics};
+use crate::model::error::SceneError;
+use crate::model::excursions::Excursions;
+use crate::model::flow::Flow;
+use crate::model::furnishing::{Clearance, Furnishing};
+use crate::model::geometry::Wall;
+use crate::model::openings::{Opening, OpeningKind, CELLS_ALONG_LONGEST};
+use crate::model::potential_flow::{FlowCell, PotentialFlow};
+use crate::model::scene::{Drag, Injection, NearWall, Scene, Scheme, SizeDistribution};
+use crate::model::walls::Correlation;
+use crate::model::walls::WallBehaviour;
+use crate::physics::intermittency::Intermittent;
+use crate::physics::noise::{particle_rng, Normals};
+use crate::physics::turbulence::FlowField;
 
 mod contacts;
 mod excursions;
@@ -96,6 +101,16 @@ use fluid::{
 };
 use lanes::run_lanes;
 pub(crate) use wall_function::track_wall_function;
+
+/// The most `dt |d sigma / dy|` may be with the default scheme: the step reads the
+/// turbulence at its start, first order in this product, and beyond it tracers drift far from
+/// well mixed near steep rms gradients (figures in docs/validation.md, "The time step").
+pub const MAX_STEP_GRADIENT: f64 = 0.05;
+
+/// [`MAX_STEP_GRADIENT`] for [`Scheme::Midpoint`](crate::model::scene::Scheme::Midpoint),
+/// which reads the profiles half a step on (second order) and keeps tracers well mixed up to
+/// twice the default's limit (docs/validation.md, "The time step").
+pub const MAX_STEP_GRADIENT_MIDPOINT: f64 = 0.1;
 
 /// Contacts allowed in one step before a bouncing particle counts as resting on the wall.
 pub const MAX_CONTACTS: usize = 32;

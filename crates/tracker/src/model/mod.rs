@@ -1,0 +1,22 @@
+//! The model: what is simulated. The domain (a room or a plane channel), the air and a
+//! particle in it, the mean flow and turbulence as a scene states them, furnishings, supply
+//! and exhaust openings with the potential flow between them, what each surface does with a
+//! particle, the near-wall excursions a scene asks for, the injection, and the [`Scene`] that
+//! holds them, validated in one place ([`Scene::validate`]).
+//!
+//! The bottom layer: it uses no other layer of the crate (only the wall law of
+//! [`depo_wall_model`]). Every layer above reads it.
+//!
+//! [`Scene`]: scene::Scene
+//! [`Scene::validate`]: scene::Scene::validate
+
+pub mod air;
+pub mod error;
+pub mod excursions;
+pub mod flow;
+pub mod furnishing;
+pub mod geometry;
+pub mod openings;
+pub mod potential_flow;
+pub mod scene;
+pub mod walls;
