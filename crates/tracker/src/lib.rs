@@ -92,7 +92,13 @@ pub mod openings {
 pub use estimation::{allocation, convergence, decay, run};
 pub use model::{furnishing, geometry};
 pub use physics::{correlations, intermittency};
-pub use studies::{distribution, efficiency, filtration, measurements, steady};
+/// Size distributions ([`studies::distribution`]) and their mass through a room
+/// ([`studies::mass_balance`]).
+pub mod distribution {
+    pub use crate::studies::distribution::*;
+    pub use crate::studies::mass_balance::*;
+}
+pub use studies::{efficiency, filtration, measurements, steady};
 
 pub use air::{Aerodynamics, Air};
 pub use decay::{log_linear_fit, Comparison, DecayCurve, DecayFit, LogLinear};

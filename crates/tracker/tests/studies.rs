@@ -246,7 +246,7 @@ fn channel_diffusion_regime_follows_the_sublayer_conductance_and_the_schmidt_num
 ///   diffusion through each from the particle's surface to `y+ = 30`, worked out here, gives
 ///   conductances 1.19 apart at this Schmidt number (274): that spread is the tolerance.
 ///   Measured 1.046 +- 0.037 (the room's near-wall `T_L` x1.5 put it at 1.16, inside this
-///   band: that error is caught by the room profile's own unit test in `flow.rs`; the
+///   band: that error is caught by the room profile's own unit test in `physics/turbulence.rs`; the
 ///   wall-normal rms x1.5 put it at 1.31, outside).
 /// - 3 um floor: the same physics, settling through a layer the turbulence keeps at the
 ///   room's mean concentration (Lai & Nazaroff's floor velocity here is the settling

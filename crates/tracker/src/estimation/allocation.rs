@@ -2,7 +2,7 @@
 //!
 //! A room study runs its first particles with the same sampling for every crossing into the
 //! near-wall layer, and then more particles until its worst figure reaches the target error
-//! ([`RoomStudy`](crate::studies::study::RoomStudy)). The other figures then come out better than
+//! ([`RoomStudy`](crate::studies::room::RoomStudy)). The other figures then come out better than
 //! they need, and the excursions that resolve them (the four walls' at 0.1 um, the floor's at
 //! 1 um, the ceiling's where its figure is too small to need resolving) take time for
 //! nothing. [`class_sampling`] lowers the sampling of each class of crossing

@@ -75,7 +75,7 @@
 //! step counts as `coarse_factor` steps towards [`Excursions::max_duration`]. Coarse steps are
 //! an approximation of the same dynamics, not a change of the estimator: what they cost in
 //! accuracy is the step's discretisation error, measured against the midpoint scheme at the
-//! scene's step (see [`CHANNEL_COARSE_FACTOR`](crate::studies::study::CHANNEL_COARSE_FACTOR) for the
+//! scene's step (see [`CHANNEL_COARSE_FACTOR`](crate::studies::channel::CHANNEL_COARSE_FACTOR) for the
 //! channel study's figures); the first-order scheme in coarse steps was 40 % off and is not
 //! offered. Scenes with furnishings or openings take the scene's step throughout.
 //!
@@ -111,7 +111,7 @@ pub struct Excursions {
     /// surface ([`crossing_class`]: the floor, the ceiling, the walls, the furnishings' faces),
     /// the surface nearest where the crossing ends: a study runs fewer excursions where its
     /// figures are resolved with room to spare (see
-    /// [`RoomStudy`](crate::studies::study::RoomStudy)). Each excursion weighs one over its own
+    /// [`RoomStudy`](crate::studies::room::RoomStudy)). Each excursion weighs one over its own
     /// sampling, so any multipliers give the same expected deposits. 1 for every class in
     /// [`Excursions::in_wall_units`].
     pub class_sampling: [f64; CROSSING_CLASSES],

@@ -1,6 +1,9 @@
 //! The mean flow between a room's openings ([`super::openings`]): a potential flow solved once
 //! per study on a staggered grid, and the cell a particle carries to read it from step to step.
 //!
+//! One subject, kept whole though long: the potential flow's solve and its reads (its unit
+//! tests are a quarter of it).
+//!
 //! ## Mean flow
 //! The air between the openings moves in a potential flow: irrotational and divergence-free,
 //! `u = grad phi` with

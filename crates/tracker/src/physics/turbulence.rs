@@ -1,6 +1,9 @@
 //! The air flow a particle sees: a mean velocity and, for turbulent scenes, velocity
 //! fluctuations from a stochastic model that respects the near-wall anisotropy.
 //!
+//! One subject, kept whole though long: the dispersion model and its tables (its unit tests
+//! are over a third of it).
+//!
 //! ## Mean flow
 //! Still air, a uniform velocity, laminar Poiseuille flow in a channel, or a turbulent
 //! channel's law-of-the-wall profile after Reichardt (1951):

@@ -27,7 +27,8 @@ use std::time::Instant;
 
 use crate::estimation::run::Estimate;
 use crate::model::error::SceneError;
-use crate::studies::study::{ChannelStudy, RoomStudy};
+use crate::studies::channel::ChannelStudy;
+use crate::studies::room::RoomStudy;
 
 /// Below this many deposit events a run's own standard error is too rough to extrapolate
 /// from: a plain run's time is then projected from the reduced run's value, and a reduced

@@ -4,6 +4,9 @@
 //! sampled excursions, whose branches (split toward the wall, rouletted on the way out) are
 //! taken depth first. The order, and with it every random number, depends on the particle
 //! alone.
+//!
+//! One subject, kept whole though long: the excursions' loop (its unit tests are a quarter
+//! of it).
 
 use glam::DVec3;
 use rand::rngs::Xoshiro256PlusPlus;
@@ -585,7 +588,7 @@ mod tests {
     /// `MAX_STEP_GRADIENT` (0.05) at 2 and above it at 4.
     #[test]
     fn coarse_steps_keep_clear_of_the_wall_and_of_the_buffer_layer() {
-        let mut scene = crate::studies::study::ChannelStudy::default().scene;
+        let mut scene = crate::studies::channel::ChannelStudy::default().scene;
         let nu = scene.air.kinematic_viscosity();
         let u_star = 0.3;
         let unit = nu / u_star;

@@ -1,6 +1,9 @@
 //! Turbulent scenes, and scenes of constant forcing, [`WIDTH`] particles side by side: the
 //! same steps, random numbers and contacts as one particle alone, with the lanes' look-ups
 //! overlapped and their arithmetic vectorised (see [`run_lanes`]).
+//!
+//! One subject, kept whole though long: the four-lane step, plain and AVX2 side by side
+//! (its unit tests are a quarter of it).
 
 use glam::DVec3;
 use multiversion::multiversion;

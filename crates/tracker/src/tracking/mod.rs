@@ -1,6 +1,9 @@
 //! One particle through a whole run: the step (drag relaxation, gravity, Brownian motion,
 //! turbulent dispersion), the wall contacts within a step, and the particle's fate.
 //!
+//! One subject, kept whole though long: the one-particle step and the types every tracking
+//! loop shares; the loop's variants are the submodules.
+//!
 //! ## The step
 //! Over a step `dt` the fluid velocity seen, `u_f = U(x) + sigma(x) zeta`, is frozen at its
 //! start. With drag relaxation time `tau` and settling velocity `v_s = tau g (1 - rho/rho_p)`
