@@ -22,8 +22,8 @@
 //! The ziggurat is exact for any number of layers; more layers only make the core of each
 //! layer a larger part of it. rand_distr's 256 layers leave 1.49 % of attempts to the slow
 //! path, which then took about 12 % of a turbulent Brownian step (its branches mispredict and
-//! the wedge test calls `exp`); 1024 layers leave 0.43 %, for an 8 KB table of edges
-//! (best of 8 single-thread runs of the bench scene: 24.6 -> 26.5 million particle-steps/s).
+//! the wedge test calls `exp`); 1024 layers leave 0.43 %, for an 8 KB table of edges (the
+//! speed-up is in docs/performance-log.md).
 //!
 //! Every attempt uses fresh bits and every slot ends with exactly one accepted sample, so the
 //! variates are independent standard normals: the block layout changes which bits make which
@@ -231,10 +231,9 @@ fn first_attempts_portable(lanes: &mut Xoshiro4, z: &Ziggurat, out: &mut [f64]) 
 /// [`first_attempts`] in AVX2: the same arithmetic on the same bits as
 /// [`first_attempts_portable`], so the same variates (tested). What the compiler made of that
 /// for AVX2 moved each lane's pair of layer edges into place with more index extractions and
-/// shuffles than the two loads, two inserts and two unpacks here: the turbulent Brownian
-/// room's nine variates a step took 17.5 instructions per particle-step more (callgrind,
-/// 288 -> 270.5 for the whole step). Marking the rejected attempts with a bit per chunk that
-/// doubles each chunk, rather than shifting by the chunk's index, saves 4.8 more.
+/// shuffles than the two loads, two inserts and two unpacks here. The rejected attempts are
+/// marked with a bit per chunk that doubles each chunk, rather than a shift by the chunk's
+/// index, which takes fewer instructions (counts in docs/performance-log.md).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn first_attempts_avx2(lanes: &mut Xoshiro4, z: &Ziggurat, out: &mut [f64]) -> [u64; LANES] {

@@ -37,10 +37,9 @@ struct Lane {
 /// sit side by side (one array per coordinate) and each part of the step runs for all lanes
 /// before the next, so the compiler vectorises the arithmetic across lanes and the processor
 /// overlaps the lanes' table look-ups, where one particle alone, each step waiting on the
-/// last, leaves it idle (the turbulent Brownian bench scene: 34 -> 37.5 million
-/// particle-steps/s on 2 cores). Where the processor has AVX2 the whole step before the walls
-/// is [`step_lanes_avx2`] (its look-ups alone, [`Table::at4`] in AVX2, had taken the step from
-/// 303 to 288 instructions per particle-step). Under constant forcing, whenever every lane
+/// last, leaves it idle (timings in docs/performance-log.md). Where the processor has AVX2
+/// the whole step before the walls is [`step_lanes_avx2`], its look-ups [`Table::at4`] in
+/// AVX2. Under constant forcing, whenever every lane
 /// holds a particle they fly freely ([`fly_freely`]) up to the next step that needs more. (With Brownian motion
 /// alone, or a laminar profile, there are no look-ups to overlap and no free flight, and one
 /// particle at a time is faster: `track` does not send such scenes here.) A step that ends

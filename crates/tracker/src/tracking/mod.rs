@@ -58,8 +58,8 @@
 //! structure-of-arrays of four, not of the whole population, so that the four overlap their
 //! table look-ups and share vector instructions. Scenes with constant forcing (uniform flow,
 //! no turbulence or Brownian motion) take the same lanes and fly them freely between contacts
-//! (`fly_freely`), a loop of a dozen vector operations per step. (An earlier eight-lane
-//! structure-of-arrays variant, with a Box-Muller generator, measured slower and was not kept.)
+//! (`fly_freely`), a loop of a dozen vector operations per step. (What was tried instead and
+//! not kept is in docs/performance-log.md.)
 //!
 //! ## Parts
 //! The tracking layer: it may use the physics ([`crate::physics`]) and the model
