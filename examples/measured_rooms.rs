@@ -22,12 +22,8 @@ use depo::tracker::correlations::LaiNazaroff;
 use depo::tracker::Air;
 use serde_json::Value;
 
-// The command's own chart code, so that these figures look like `depo room`'s; it names its
-// error type `super::Error`.
-#[allow(dead_code)]
-#[path = "../src/cli/plot.rs"]
-mod plot;
-use plot::Series;
+// The command's own chart code, so that these figures look like `depo room`'s.
+use depo::plot::{self, Series};
 type Error = String;
 
 /// Thatcher et al. (2002), abstract: raising the mean air speed "from <5 to 19 cm/s ...

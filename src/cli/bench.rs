@@ -15,9 +15,9 @@ use depo::tracker::Scheme;
 use depo::wall_model::kernel::MAX_THREADS;
 use serde::Serialize;
 
-use super::plot::{self, Series};
-use super::room::Measured;
 use super::{check_memory, print_csv_rows, progress_bar, Error, Format};
+use depo::plot::{self, Series};
+use depo::report::Measured;
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {

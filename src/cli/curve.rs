@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use clap::Args;
 use serde::Serialize;
 
-use super::plot::{self, Series};
 use super::{check_memory, fixed, print_csv, Error, Format, LawArgs, MAX_SPEED};
+use depo::plot::{self, Series};
 
 #[derive(Args, Debug)]
 pub struct CurveArgs {

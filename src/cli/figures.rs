@@ -16,8 +16,8 @@ use depo::wall_model::size::fit_size_scaling;
 use depo::wall_model::tilt::{apparent_restitution, tilt_refit};
 use depo::wall_model::{presets, LawParams, WallLaw, PRESETS};
 
-use super::plot::{self, Series};
 use super::Error;
+use depo::plot::{self, Series};
 
 #[derive(Args, Debug)]
 pub struct FiguresArgs {

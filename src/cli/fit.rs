@@ -7,9 +7,9 @@ use depo::wall_model::fit::{fit, Exponents, FitReport, Sample};
 use depo::wall_model::WallLaw;
 use serde::Serialize;
 
-use super::csv_input::CsvInput;
-use super::plot::{self, Series};
 use super::{shown, Error};
+use depo::csv_input::CsvInput;
+use depo::plot::{self, Series};
 
 /// What `depo fit` prints: one fit, as a table or as JSON (not CSV, a format of rows).
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -47,7 +47,7 @@ pub struct FitArgs {
 }
 
 /// The surface keys a scene file takes a wall law under: the room's and the channel's
-/// `[walls]` keys and the faces of a `[[furnishings]]` entry (`src/cli/scene_file.rs`).
+/// `[walls]` keys and the faces of a `[[furnishings]]` entry (`src/scene_file/walls.rs`).
 const SURFACES: [&str; 11] = ["all", "floor", "ceiling", "x0", "x1", "y0", "y1", "lower", "upper", "bottom", "top"];
 
 /// Where in a scene file the entry for `surface` goes.

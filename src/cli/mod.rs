@@ -12,18 +12,15 @@ macro_rules! out {
 mod bench;
 mod capture;
 mod channel;
-mod csv_input;
 mod curve;
 mod figures;
 mod fit;
 mod impact;
-mod plot;
 mod presets;
 mod room;
-mod room_distribution;
-mod scene_file;
 
 use clap::{Args as ClapArgs, Parser, Subcommand, ValueEnum};
+pub use depo::text::{check_memory, shown};
 use depo::wall_model::{LawParams, WallLaw};
 
 /// One line of what went wrong, for the user.
@@ -126,33 +123,6 @@ impl LawArgs {
     }
 }
 
-/// Fails with one line when `items` of about `bytes_each` bytes would not fit in this
-/// machine's memory (`MemTotal` of /proc/meminfo, or the address space where that is not
-/// readable), instead of a capacity-overflow panic or an allocation-failure abort later.
-pub fn check_memory(what: &str, items: u64, bytes_each: u64) -> Result<(), Error> {
-    let limit = physical_memory().unwrap_or(isize::MAX as u64).min(isize::MAX as u64);
-    match items.checked_mul(bytes_each) {
-        Some(need) if need <= limit => Ok(()),
-        need => Err(format!(
-            "{what} needs {} of memory, more than this machine's {}",
-            need.map_or_else(|| "more than 2^64 bytes".to_string(), gigabytes),
-            gigabytes(limit)
-        )),
-    }
-}
-
-fn gigabytes(bytes: u64) -> String {
-    format!("{:.1} GB", bytes as f64 / 1e9)
-}
-
-/// Total physical memory in bytes, where the system says.
-fn physical_memory() -> Option<u64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemTotal:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    kib.checked_mul(1024)
-}
-
 /// The largest speed the commands take (m/s): every energy per unit mass they print, `v^2 / 2`,
 /// stays finite, far beyond any particle's.
 pub const MAX_SPEED: f64 = 1e100;
@@ -166,22 +136,6 @@ pub fn fixed(x: f64, decimals: usize) -> String {
         format!("{x:.decimals$}")
     } else {
         format!("{x:.decimals$e}")
-    }
-}
-
-/// A computed `x` in text (tables, notes, errors): to six significant digits, plainly where
-/// that is short (`0.001`, not `0.0009999999999998899`; `3000`, not `3000.0000000000005`),
-/// else in e-notation (`1.23457e-7`, `1e100`). JSON and CSV keep every digit.
-pub fn shown(x: f64) -> String {
-    if !x.is_finite() {
-        return x.to_string();
-    }
-    let rounded: f64 = format!("{x:.5e}").parse().unwrap_or(x);
-    let plain = rounded.to_string();
-    if plain.len() <= 10 {
-        plain
-    } else {
-        format!("{rounded:e}")
     }
 }
 
@@ -221,10 +175,17 @@ where
     R: IntoIterator,
     R::Item: AsRef<[u8]>,
 {
-    emit_csv(|writer| {
-        writer.write_record(header)?;
-        rows.into_iter().try_for_each(|row| writer.write_record(row))
-    })
+    out!("{}", depo::report::csv_text(header, rows)?);
+    Ok(())
+}
+
+/// Prints `text`, whose lines are each ended, as [`emit`] prints a line.
+pub fn emit_text(text: &str) {
+    if let Some(body) = text.strip_suffix('\n') {
+        emit(format_args!("{body}"));
+    } else if !text.is_empty() {
+        emit(format_args!("{text}"));
+    }
 }
 
 /// Prints rows whose fields are the CSV's columns: the header from the field names (as in
@@ -260,6 +221,28 @@ pub fn progress_bar(len: usize, what: &str) -> Result<indicatif::ProgressBar, Er
     Ok(bar)
 }
 
+/// A study's progress as a bar ([`progress_bar`]), drawn from its start to its end.
+#[derive(Default)]
+pub struct Bar(Option<indicatif::ProgressBar>);
+
+impl depo::report::Progress for Bar {
+    fn start(&mut self, total: usize, what: &str) {
+        self.0 = progress_bar(total, what).ok();
+    }
+
+    fn done(&mut self, done: usize) {
+        if let Some(bar) = &self.0 {
+            bar.set_position(done as u64);
+        }
+    }
+
+    fn finish(&mut self) {
+        if let Some(bar) = self.0.take() {
+            bar.finish_and_clear();
+        }
+    }
+}
+
 /// Runs the parsed command.
 pub fn run(args: Args) -> Result<(), Error> {
     match args.command {
@@ -277,19 +260,10 @@ pub fn run(args: Args) -> Result<(), Error> {
 
 #[cfg(test)]
 mod tests {
-    use super::{fixed, shown};
+    use super::fixed;
 
     #[test]
-    fn computed_numbers_read_to_six_digits() {
-        assert_eq!(shown(0.0009999999999998899), "0.001");
-        assert_eq!(shown(3000.0000000000005), "3000");
-        assert_eq!(shown(0.030000000000000002), "0.03");
-        assert_eq!(shown(-0.014623553139192037), "-0.0146236");
-        assert_eq!(shown(1.234567e-7), "1.23457e-7");
-        assert_eq!(shown(1e300), "1e300");
-        assert_eq!(shown(12.5), "12.5");
-        assert_eq!(shown(0.0), "0");
-        assert_eq!(shown(f64::INFINITY), "inf");
+    fn fixed_numbers_switch_to_e_notation_outside_their_range() {
         assert_eq!(fixed(0.1, 6), "0.100000");
         assert_eq!(fixed(-1e100, 6), "-1.000000e100");
         assert_eq!(fixed(1e-5, 4), "1.0000e-5");

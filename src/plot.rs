@@ -1,4 +1,5 @@
-//! SVG line charts for the subcommands' `--plot` option.
+//! SVG charts for the figures of the command and of the studies' reports (`--plot`): one subject,
+//! drawing charts (line and log-log charts, small multiples, maps, bars), hence one file.
 //!
 //! Every series has its own colour (ten distinct ones before they repeat) unless the caller
 //! pairs series on purpose (a measurement and its model in one colour). The legend sits in a
@@ -11,7 +12,8 @@ use std::path::Path;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::Error;
+/// One line of what went wrong.
+type Error = String;
 
 /// Fails with one line where the figure `path` cannot be written, so that a long run is not
 /// lost to it at the end. A file that was not there is not left behind.

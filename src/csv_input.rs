@@ -7,7 +7,8 @@ use std::path::Path;
 
 use csv::StringRecord;
 
-use super::Error;
+/// One line of what went wrong.
+type Error = String;
 
 /// An open CSV file and its header.
 pub struct CsvInput {

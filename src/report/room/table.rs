@@ -1,0 +1,527 @@
+//! `depo room`'s text table: the settings, a line per size beside Lai & Nazaroff, the walls and
+//! furnishings apart where they differ, the notes, the release read as a decay experiment, the
+//! steady state, and with a size distribution where its mass went.
+
+use depo_tracker::decay::MIN_AIRBORNE;
+use depo_tracker::distribution::first_seen;
+use depo_tracker::studies::RoomStudy;
+use depo_tracker::{Flow, Geometry};
+
+use super::distribution::{DistributionReport, MassUnit, Part, PM_DEFINITION};
+use super::resolution::{particles_to_resolve, two_figures_up, RESOLVABLE, RESOLVED_ERROR};
+use super::rows::Share;
+use super::{rate_cell, Measured, RoomResult, Row};
+use crate::report::{outln, ERROR_NOTE};
+use crate::text::shown;
+
+/// The table of `r`, each line ended, as `depo room` prints it.
+pub fn table(r: &RoomResult) -> String {
+    let mut text = String::new();
+    let o = &mut text;
+    let seconds = r.seconds;
+    let study = &r.study;
+    let rows = &r.rows[..];
+    let Geometry::Room { size } = study.scene.geometry else { unreachable!("a room study has a room") };
+    let u_star = match study.scene.flow {
+        Flow::TurbulentRoom { friction_velocity, .. } => friction_velocity,
+        _ => 0.0,
+    };
+    let ventilated = study.scene.exchange_rate() > 0.0;
+    let furnished = !study.scene.furnishings.is_empty();
+    let steps: u64 = rows.iter().map(|r| r.particle_steps).sum();
+    let particles: Vec<String> = rows.iter().map(|r| r.particles.to_string()).collect();
+    outln!(
+        o,
+        "Room {} x {} x {} m, u* = {} m/s, {} particles per size, {} s; deposition velocity (m/s) per surface",
+        shown(size[0]),
+        shown(size[1]),
+        shown(size[2]),
+        shown(u_star),
+        particles.join("/"),
+        shown(study.scene.duration)
+    );
+    if let Some(target) = study.target_error {
+        outln!(
+            o,
+            "({} first, more up to {} where beta or a surface with Lai & Nazaroff's v_d >= 1e-7 m/s was above {} % error.)",
+            study.count,
+            study.max_count,
+            shown(100.0 * target)
+        );
+    }
+    outln!(o, "beside Lai & Nazaroff (2000) for the same u*; ratio = beta / Lai & Nazaroff's beta.");
+    if ventilated {
+        outln!(
+            o,
+            "Ventilated: {} air changes per hour, penetration {}; C_in/C_out = P a / (a + beta) at steady state.",
+            // To a thousandth: with openings the rate is a flow over a volume.
+            format!("{:.3}", study.scene.exchange_rate() * 3600.0).trim_end_matches('0').trim_end_matches('.'),
+            study.penetration
+        );
+    }
+    if !study.scene.openings.is_empty() {
+        outln!(
+            o,
+            "Through {} openings: air and particles from the supply to the exhaust in a potential flow; \
+             particles leave at the exhaust (a = exhaust flow / air volume).",
+            study.scene.openings.len()
+        );
+    }
+    let f = &study.filtration;
+    // Each filter's single-pass efficiency at the sizes run, where it acts.
+    let efficiencies = |pick: &dyn Fn(&Row) -> Option<f64>| -> Option<String> {
+        let values: Option<Vec<String>> = rows.iter().map(|r| pick(r).map(|e| format!("{e:.3}"))).collect();
+        values.map(|v| v.join(", "))
+    };
+    if let Some(list) = efficiencies(&|r| r.supply_filter_efficiency) {
+        outln!(o, "Supply filter efficiency eta_s at the sizes run: {list}.");
+    }
+    if let Some(list) = efficiencies(&|r| r.recirculation_filter_efficiency) {
+        outln!(o, "Recirculation filter efficiency eta_r at the sizes run: {list}.");
+    }
+    if f.supply_share > 0.0 || f.recirculation > 0.0 {
+        outln!(
+            o,
+            "Filters: a share {} of the exchange through the supply filter, recirculation {} per hour through its \
+             filter (its removal eta_r a_r, added to the exhaust: {} per hour at the sizes run); \
+             C_in/C_out = (P (1 - s) a + (1 - eta_s) s a) / (a + eta_r a_r + beta).",
+            f.supply_share,
+            f.recirculation * 3600.0,
+            rows.iter()
+                .map(|r| format!("{:.3}", r.filter_removal_per_hour.unwrap_or(0.0)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    outln!(
+        o,
+        "{:>8}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7} {:>6}{}  method",
+        "d (um)",
+        "floor",
+        "L&N",
+        "ceiling",
+        "L&N",
+        "walls",
+        "L&N",
+        "beta (1/h)",
+        "L&N",
+        "ratio",
+        if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
+    );
+    // A surface's figure, flagged with `*` when unresolved.
+    let cell = |r: &Row, name: &str, m: &Measured| {
+        format!("{}{}", m.cell(), if r.unresolved.contains(&name) { "*" } else { " " })
+    };
+    for (i, r) in rows.iter().enumerate() {
+        density_heading(o, rows, i);
+        let method = match (r.excursions_truncated, r.longest_excursion_s) {
+            (Some(t), Some(s)) if t > 1e-3 => format!("excursions ({:.1} % at {s:.0} s)", 100.0 * t),
+            (Some(_), _) => "excursions".to_string(),
+            (None, _) => r.method.to_string(),
+        };
+        // Averaged from the release: every particle had left before the window.
+        let method = if r.averaged_from_s == 0.0 && study.transient > 0.0 { format!("{method} +") } else { method };
+        outln!(
+            o,
+            "{:>8.3}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7.3} {:>6.2}{}  {method}",
+            r.diameter_um,
+            cell(r, "floor", &r.floor),
+            model_cell(r.lai_nazaroff.floor),
+            cell(r, "ceiling", &r.ceiling),
+            model_cell(r.lai_nazaroff.ceiling),
+            cell(r, "walls", &r.walls),
+            model_cell(r.lai_nazaroff.walls),
+            rate_cell(&r.beta_per_hour),
+            r.lai_nazaroff.beta_per_hour,
+            r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour,
+            r.indoor_outdoor
+                .as_ref()
+                .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
+        );
+    }
+    // The four walls apart where they can differ: in material, or in the openings' flow.
+    let walls = &study.scene.walls[2..6];
+    if walls.iter().any(|w| *w != walls[0]) || !study.scene.openings.is_empty() {
+        walls_table(o, rows);
+    }
+    if furnished {
+        furnishings_table(o, rows, study);
+    }
+    outln!(o, "{ERROR_NOTE}");
+    let model = |r: &Row| [r.lai_nazaroff.floor, r.lai_nazaroff.ceiling, r.lai_nazaroff.walls];
+    if rows.iter().flat_map(model).any(|v| v < MODEL_NONE) {
+        outln!(
+            o,
+            "L&N < {MODEL_NONE:.0e}: Lai & Nazaroff give below {MODEL_NONE:.0e} m/s (the ceiling for coarse particles), no deposition."
+        );
+    }
+    if rows.iter().any(|r| r.averaged_from_s == 0.0) && study.transient > 0.0 {
+        outln!(
+            o,
+            "+ every particle left the air before the averaging window opened: averaged over the release from t = 0 (what became of it, not a well-mixed room's rates; the times by which half and 90 % had deposited are in the release table)."
+        );
+    }
+    if rows.iter().any(|r| !r.unresolved.is_empty()) {
+        outln!(
+            o,
+            "* unresolved: no deposit event, or, where Lai & Nazaroff give at least {:.0e} m/s, a relative standard error or a share given up above {} %.",
+            RESOLVABLE,
+            100.0 * RESOLVED_ERROR
+        );
+        let more: Vec<String> = rows
+            .iter()
+            .filter_map(|r| {
+                let model = &r.lai_nazaroff;
+                let figures = [(&r.floor, model.floor), (&r.ceiling, model.ceiling), (&r.walls, model.walls)];
+                particles_to_resolve(r.particles, figures)
+                    .map(|n| format!("{} particles at {} um", two_figures_up(n), (r.diameter_um * 1e4).round() / 1e4))
+            })
+            .collect();
+        if !more.is_empty() {
+            outln!(
+                o,
+                "  Errors above {} % would take about {} (an error falls as one over the square root of the particles; particles.max_count in a scene file).",
+                100.0 * RESOLVED_ERROR,
+                more.join(", ")
+            );
+        }
+    }
+    outln!(
+        o,
+        "Averages from {} s to {} s; {steps} particle-steps tracked (excursions not counted) in {seconds:.1} s.",
+        shown(study.transient * study.scene.duration),
+        shown(study.scene.duration)
+    );
+    decay_table(o, rows, study.scene.exchange_rate() * 3600.0, !study.scene.openings.is_empty());
+    steady_table(o, rows);
+    if let Some(d) = &r.distribution {
+        d.table(o);
+    }
+    text
+}
+
+/// Before the first row of each density, where the rows have several: the density.
+fn density_heading(o: &mut String, rows: &[Row], i: usize) {
+    let several = rows.iter().any(|r| r.density != rows[0].density);
+    if several && (i == 0 || rows[i - 1].density != rows[i].density) {
+        outln!(o, "particle density {} kg/m^3:", shown(rows[i].density));
+    }
+}
+
+/// Each vertical wall's deposition velocity, where the walls differ.
+fn walls_table(o: &mut String, rows: &[Row]) {
+    outln!(o, "Each vertical wall (m/s; x0 at x = 0, x1 opposite it, y0 at y = 0, y1 opposite it):");
+    outln!(o, "{:>8}  {:>27}  {:>27}  {:>27}  {:>27}", "d (um)", "x0", "x1", "y0", "y1");
+    for r in rows {
+        let cells: Vec<String> = r.each_wall.iter().map(|w| w.velocity.cell()).collect();
+        outln!(o, "{:>8.3}  {:>27}  {:>27}  {:>27}  {:>27}", r.diameter_um, cells[0], cells[1], cells[2], cells[3]);
+    }
+}
+
+/// The furnishings' table under the per-size one: per size and furnishing, the deposition
+/// velocity (m/s) onto all its faces, its top, its bottom and its sides, and its share of the
+/// release.
+fn furnishings_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
+    let scene = &study.scene;
+    outln!(
+        o,
+        "Furnishings: {} boxes, {:.3} m^3 of air; surface-to-volume ratio {:.3} 1/m (walls and faces over the air's volume); Lai & Nazaroff's beta above is the bare room's.",
+        scene.furnishings.len(),
+        scene.free_volume(),
+        scene.surface_to_volume()
+    );
+    outln!(
+        o,
+        "{:>8}  {:>12} {:>8}  {:>27}  {:>27}  {:>27}  {:>27}  {:>16}",
+        "d (um)",
+        "furnishing",
+        "area m^2",
+        "all faces",
+        "top",
+        "bottom",
+        "sides",
+        "share of release"
+    );
+    for r in rows {
+        for f in &r.furnishings {
+            outln!(
+                o,
+                "{:>8.3}  {:>12} {:>8.3}  {:>27}  {:>27}  {:>27}  {:>27}  {:>16}",
+                r.diameter_um,
+                f.name,
+                f.area_m2,
+                f.all.cell(),
+                f.top.cell(),
+                f.bottom.cell(),
+                f.sides.cell(),
+                format!("{:.4} +- {:.4}", f.deposited.share, f.deposited.share_error)
+            );
+        }
+    }
+}
+
+/// Fewer deposits than this within the decay fit's window are flagged in the table: the
+/// fitted `beta` then rests on a handful of events (a relative Poisson error above 30 %) and
+/// its delta-method error is itself uncertain.
+const FEW_DEPOSITS: usize = 10;
+
+/// The fitted `beta` per hour: `value +- error [deposits]`, flagged `?` with fewer than
+/// [`FEW_DEPOSITS`], or `< bound [0]` (the 95 % upper bound) with none.
+fn fitted_cell(m: &Measured) -> String {
+    match m.upper_bound {
+        Some(bound) => format!("< {bound:.2e} [0]"),
+        None => format!("{} [{}]{}", rate_cell(m), m.events, if m.events < FEW_DEPOSITS { "?" } else { "" }),
+    }
+}
+
+/// The table's second part: each size read as a decay experiment (the fitted `beta` beside
+/// the study's) and where the release ends; `ach` the air changes per hour, `openings`
+/// whether the exhaust is through openings (whose air need not be the room's mean).
+fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
+    outln!(o, "");
+    outln!(
+        o,
+        "After the release at t = 0, as a decay experiment reads it: beta fitted = the least-squares slope of ln N(t) \
+         over the window (from the averages' start while >= {MIN_AIRBORNE} particles are airborne), less a = {ach} /h, \
+         [deposits in the window], ? fewer than {FEW_DEPOSITS}; z = (fitted - beta) / the standard error of that \
+         difference, paired over the particles both rest on (- where either has no event or no error). Then where the released \
+         particles are at the end, % of the number (for one size also of the mass), and the floor's loading per mg \
+         released."
+    );
+    outln!(
+        o,
+        "{:>8}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20}  {:>28}",
+        "d (um)",
+        "beta fitted (1/h)",
+        "z",
+        "window (s)",
+        "floor",
+        "ceiling",
+        "walls",
+        // A furnished room's release has a part on the furnishings.
+        if rows.iter().any(|r| r.release.furnishings.is_some()) {
+            format!(" {:>11}", "furnishings")
+        } else {
+            String::new()
+        },
+        "exhausted",
+        "airborne",
+        "floor (ug/m2 per mg)",
+        "50 % / 90 % deposited by (s)"
+    );
+    for (i, r) in rows.iter().enumerate() {
+        density_heading(o, rows, i);
+        let (fitted, z, window) = match &r.decay_fit {
+            Some(f) => (
+                fitted_cell(&f.beta_per_hour),
+                f.z.map_or("-".to_string(), |z| format!("{z:.1}")),
+                format!("{:.0}-{:.0}", f.window_s[0], f.window_s[1]),
+            ),
+            None => ("no fit".to_string(), "-".to_string(), "-".to_string()),
+        };
+        let release = &r.release;
+        let pct = |s: &Share| format!("{:.1}", 100.0 * s.share);
+        outln!(
+            o,
+            "{:>8.3}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20.3e}  {:>28}",
+            r.diameter_um,
+            fitted,
+            z,
+            window,
+            pct(&release.floor),
+            pct(&release.ceiling),
+            pct(&release.walls),
+            release.furnishings.as_ref().map_or(String::new(), |s| format!(" {:>11}", pct(s))),
+            pct(&release.exhausted),
+            pct(&release.airborne),
+            // kg/m^2 per kg released, for 1 mg released, in ug/m^2.
+            release.floor.loading_per_m2.unwrap_or(0.0) * 1e3,
+            r.deposited_by_s.map(|t| t.map_or("-".to_string(), |t| format!("{t:.0}"))).join(" / ")
+        );
+    }
+    outln!(
+        o,
+        "The curve counts the tracked particles, which leave the air by their own deposits: where deposition \
+         is rare it resolves beta far less well than the study's excursions (compare the errors)."
+    );
+    let apart = rows.iter().filter_map(|r| r.decay_fit.as_ref()?.z).any(|z| z.abs() > 3.0);
+    if openings && apart {
+        outln!(
+            o,
+            "! beta fitted differs from the study's beta by more than 3 standard errors: through openings the exhaust \
+             draws the air near it, older or fresher than the room's mean, so the decay less a holds that difference \
+             too and is no deposition rate; the study's beta (deposits over airborne time) is (docs/tracker.md, \
+             \"What it means\")."
+        );
+    }
+}
+
+/// The steady state under a continuous source, per size (`depo_tracker::steady`).
+fn steady_table(o: &mut String, rows: &[Row]) {
+    outln!(o, "");
+    outln!(
+        o,
+        "Under a continuous source (emitted uniformly over the room at a constant rate: indoors, or outdoor air \
+         infiltrating), at steady state, from the release followed from t = 0: the mean time in the air (the airborne \
+         number per particle emitted an hour), the deposition velocities (flux over the mean concentration), the share \
+         of the source ending in each place, % (and the share of the time in the air from beyond the run, the room's \
+         late rates'), and with ventilation C_in/C_out."
+    );
+    let ventilated = rows.iter().any(|r| r.steady.as_ref().is_some_and(|s| s.indoor_outdoor.is_some()));
+    outln!(
+        o,
+        "{:>8}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7}{}",
+        "d (um)",
+        "time in air (h)",
+        "floor (m/s)",
+        "ceiling (m/s)",
+        "walls (m/s)",
+        "floor",
+        "ceiling",
+        "walls",
+        "furnish",
+        "exhausted",
+        "beyond",
+        if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
+    );
+    for (i, r) in rows.iter().enumerate() {
+        density_heading(o, rows, i);
+        let Some(st) = &r.steady else {
+            outln!(o, "{:>8.3}  nothing removes these particles: no steady state", r.diameter_um);
+            continue;
+        };
+        let pct = |x: f64| format!("{:.1}", 100.0 * x);
+        outln!(
+            o,
+            "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7}{}",
+            r.diameter_um,
+            format!("{:.3} +- {:.3}", st.residence_h.value, st.residence_h.error),
+            st.floor_velocity.cell(),
+            st.ceiling_velocity.cell(),
+            st.walls_velocity.cell(),
+            pct(st.floor),
+            pct(st.ceiling),
+            pct(st.walls),
+            pct(st.furnishings),
+            pct(st.exhausted),
+            pct(st.beyond_run),
+            st.indoor_outdoor
+                .as_ref()
+                .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
+        );
+    }
+}
+
+/// Below this deposition velocity (m/s) the table prints Lai & Nazaroff's as `< 1e-30`: their
+/// ceiling velocity for coarse particles falls to 1e-138 m/s and to 0 in double precision,
+/// no deposit a room could show.
+const MODEL_NONE: f64 = 1e-30;
+
+/// Lai & Nazaroff's deposition velocity (m/s) in the table: `1.78e-5`, or `< 1e-30` below
+/// [`MODEL_NONE`].
+pub(super) fn model_cell(v: f64) -> String {
+    if v < MODEL_NONE {
+        format!("< {MODEL_NONE:.0e}")
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
+impl DistributionReport {
+    /// The table under the per-size one.
+    pub(super) fn table(&self, o: &mut String) {
+        let absolute = self.mass_unit == MassUnit::Kg;
+        // Micrograms read better than kilograms.
+        let k = if absolute { 1e9 } else { 1.0 };
+        let unit = if absolute { "ug in the room" } else { "share of the distribution's mass" };
+        let densities: Vec<String> =
+            first_seen(self.bins.iter().map(|b| b.density)).iter().map(f64::to_string).collect();
+        outln!(
+            o,
+            "Size distribution: {} bins (density {} kg/m^3), each run at its geometric midpoint; mass ({unit}):",
+            self.bins.len(),
+            densities.join(", ")
+        );
+        let cell = |p: &Part| match p.quadrature {
+            Some(q) => format!("{:.3e} +- {:.1e} ({:.1e})", p.value * k, p.error * k, q * k),
+            None => format!("{:.3e} +- {:.1e} (?)", p.value * k, p.error * k),
+        };
+        let furnished = |text: String| if self.furnished { format!("  {text:>28}") } else { String::new() };
+        outln!(
+            o,
+            "{:>6}  {:>10}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
+            "",
+            "injected",
+            "floor",
+            "ceiling",
+            "walls",
+            furnished("furnishings".into()),
+            "airborne (end)",
+            "exhausted",
+            "beta of mass (1/h)"
+        );
+        for (name, s) in self.classes() {
+            outln!(
+                o,
+                "{name:>6}  {:>10.3e}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
+                s.injected * k,
+                cell(&s.floor),
+                cell(&s.ceiling),
+                cell(&s.walls),
+                furnished(cell(&s.furnishings)),
+                cell(&s.airborne),
+                cell(&s.exhausted),
+                s.beta_per_hour.as_ref().map_or("none measured".to_string(), beta_cell)
+            );
+        }
+        let partial: Vec<String> = self
+            .classes()
+            .iter()
+            .filter(|(_, s)| s.beta_mass_share < 1.0)
+            .map(|(name, s)| format!("{name} {:.1} %", 100.0 * s.beta_mass_share))
+            .collect();
+        if !partial.is_empty() {
+            outln!(
+                o,
+                "beta of mass over part of the mass only ({}): the rest is in bins whose particles all settled before the averaging window, with no beta to measure.",
+                partial.join(", ")
+            );
+        }
+        let unseen: Vec<String> = [
+            ("floor", &self.all.floor),
+            ("ceiling", &self.all.ceiling),
+            ("walls", &self.all.walls),
+            ("airborne", &self.all.airborne),
+            ("exhausted", &self.all.exhausted),
+        ]
+        .into_iter()
+        .filter(|(_, p)| p.unseen_bound > 0.0)
+        .map(|(name, p)| format!("{name} < {:.1e}", p.unseen_bound * k))
+        .collect();
+        if !unseen.is_empty() {
+            outln!(
+                o,
+                "Bins whose run had no particle in a fate count 0 there; by the rule of three (95 %) they hold at most: {}.",
+                unseen.join(", ")
+            );
+        }
+        outln!(
+            o,
+            "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
+             one run at its midpoint, where each share is monotonic in d (?: a bin without neighbours). Mass of the modes beyond the bins' range, left out: {:.3e}. {PM_DEFINITION}. \
+             beta of mass: the loss rate of the airborne mass by deposition (not ventilation) while its size \
+             distribution is the injected one; over part of the mass, a lower bound on the whole's.",
+            self.outside_bins * k
+        );
+    }
+}
+
+/// A rate per hour: with deposit events `value +- error` (fixed-point from 0.1/h), without
+/// its 95 % upper bound.
+fn beta_cell(m: &Measured) -> String {
+    match m.upper_bound {
+        Some(bound) => format!("< {bound:.2e} [0]"),
+        None if m.value.abs() >= 0.1 => format!("{:.3} +- {:.3}", m.value, m.error),
+        None => format!("{:.2e} +- {:.1e}", m.value, m.error),
+    }
+}

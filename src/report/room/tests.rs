@@ -1,0 +1,106 @@
+//! The room study's rules of resolution and its table's cells.
+
+use depo_tracker::studies;
+
+use super::figures::significant;
+use super::resolution::{particles_to_resolve, two_figures_up, unresolved};
+use super::table::model_cell;
+use super::*;
+
+/// Resolved: events, and where the model asks it, an error and a given-up share within 5 %.
+/// `depo room --help` states the excursions' longest duration and its doublings in words.
+#[test]
+fn the_help_s_excursion_numbers_are_the_study_s() {
+    assert_eq!(studies::ROOM_LONGEST_EXCURSION, 16000.0);
+    assert_eq!(studies::LONGEST_SHARE, 0.025);
+    assert_eq!(1 << studies::LONGEST_DOUBLINGS, 8);
+}
+
+#[test]
+fn a_vanishing_model_velocity_reads_as_a_bound() {
+    assert_eq!(model_cell(1.97e-138), "< 1e-30");
+    assert_eq!(model_cell(0.0), "< 1e-30");
+    assert_eq!(model_cell(1.78e-5), "1.78e-5");
+}
+
+#[test]
+fn significant_digits_drop_trailing_zeros() {
+    assert_eq!(significant(12.2828, 3), "12.3");
+    assert_eq!(significant(0.011719, 3), "0.0117");
+    assert_eq!(significant(10.0, 3), "10");
+    assert_eq!(significant(0.3, 3), "0.3");
+    assert_eq!(significant(1234.6, 3), "1235");
+}
+
+#[test]
+fn a_figure_is_unresolved_by_its_error_or_by_what_its_excursions_gave_up() {
+    let m = |error: f64, events| Measured { value: 1e-6, error, events, upper_bound: None };
+    assert!(!unresolved(&m(4e-8, 100), 1e-6, 0.01));
+    assert!(unresolved(&m(6e-8, 100), 1e-6, 0.01));
+    assert!(unresolved(&m(4e-8, 100), 1e-6, 0.06));
+    assert!(unresolved(&m(0.0, 0), 1e-9, 0.0));
+    // Below the model's 1e-7 m/s neither the error nor the given-up share is asked.
+    assert!(!unresolved(&m(6e-7, 100), 1e-8, 0.06));
+}
+
+/// 8000 particles left the walls at 10 % and the ceiling at 7.4 %: four times the
+/// particles halve the walls' error, so 32000, with the study's margin of 1.15 36800,
+/// resolve both; the ceiling alone 8000 x 1.48^2 x 1.15 = 20151.7. A figure within 5 %,
+/// one without an event and one the model does not ask to resolve set nothing.
+#[test]
+fn the_particles_to_resolve_a_figure_grow_with_its_error_squared() {
+    let m = |error: f64, events| Measured { value: 1e-6, error, events, upper_bound: None };
+    let (walls, ceiling, floor) = (m(1e-7, 900), m(7.4e-8, 300), m(4e-8, 5000));
+    assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&ceiling, 1e-6), (&walls, 1e-6)]), Some(36800));
+    assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&ceiling, 1e-6), (&walls, 1e-8)]), Some(20152));
+    assert_eq!(
+        [two_figures_up(20152), two_figures_up(36800), two_figures_up(99), two_figures_up(101)],
+        [21000, 37000, 99, 110]
+    );
+    let none = m(0.0, 0);
+    assert_eq!(particles_to_resolve(8000, [(&floor, 1e-6), (&none, 1e-6), (&walls, 1e-8)]), None);
+}
+
+/// Counts what a study tells its progress.
+#[derive(Default)]
+struct Counted {
+    started: Vec<(usize, String)>,
+    done: Vec<usize>,
+    finished: usize,
+}
+
+impl crate::report::Progress for Counted {
+    fn start(&mut self, total: usize, what: &str) {
+        self.started.push((total, what.to_string()));
+    }
+    fn done(&mut self, done: usize) {
+        self.done.push(done);
+    }
+    fn finish(&mut self) {
+        self.finished += 1;
+    }
+}
+
+/// The study of a scene given as a table (a binding's dictionary) renders the JSON its file
+/// does; a seed given beside the scene takes the place of its `run.seed`; progress is told
+/// each size as it completes.
+#[test]
+fn a_study_s_json_is_the_same_from_its_file_or_its_table() {
+    use crate::scene_file::SceneInput;
+    let text = "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [3e-6, 10e-6]\ncount = 20\n\
+                target_error = 0.0\n[run]\nduration = 20.0\n";
+    let path = std::env::temp_dir().join(format!("depo-report-room-{}.toml", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    let mut progress = Counted::default();
+    let from_file = study(&RoomOptions::new(SceneInput::Path(path.clone())), &mut progress);
+    std::fs::remove_file(&path).unwrap();
+    let from_file = json::to_json(&from_file.unwrap()).unwrap();
+    assert_eq!(progress.started, [(2, "sizes".to_string())]);
+    assert_eq!((progress.done, progress.finished), (vec![1, 2], 1));
+    let table = || SceneInput::Table { table: toml::from_str(text).unwrap(), name: "scene".into(), dir: ".".into() };
+    let from_table = study(&RoomOptions::new(table()), &mut crate::report::Silent).unwrap();
+    assert_eq!(json::to_json(&from_table).unwrap(), from_file);
+    let seeded = RoomOptions { seed: Some(7), ..RoomOptions::new(table()) };
+    let reseeded = json::to_json(&study(&seeded, &mut crate::report::Silent).unwrap()).unwrap();
+    assert_ne!(reseeded, from_file);
+}

@@ -1,0 +1,150 @@
+//! `[walls]`: each surface's behaviour (a sink, a mirror, or the wall law with a preset or
+//! its own constants); the faces of `[[furnishings]]` take the same keys.
+
+use depo_tracker::{Geometry, Scene, WallBehaviour};
+use depo_wall_model::{LawParams, SizeDependence, WallLaw};
+use serde::Deserialize;
+
+use super::{Error, SceneSource};
+
+#[derive(Deserialize, Default, Clone)]
+#[serde(deny_unknown_fields)]
+pub(super) struct WallFile {
+    /// "sink", "reflect" or "law".
+    pub(super) behaviour: Option<String>,
+    pub(super) preset: Option<String>,
+    /// A law's own constants instead of a preset, as `depo fit` prints them (m/s; `p` and `q`
+    /// default to 1).
+    pub(super) k: Option<f64>,
+    pub(super) kappa: Option<f64>,
+    pub(super) vc: Option<f64>,
+    pub(super) p: Option<f64>,
+    pub(super) q: Option<f64>,
+    pub(super) mu: Option<f64>,
+    pub(super) size_exponent: Option<f64>,
+    pub(super) reference_diameter: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(super) struct WallsFile {
+    pub(super) all: Option<WallFile>,
+    pub(super) floor: Option<WallFile>,
+    pub(super) ceiling: Option<WallFile>,
+    pub(super) x0: Option<WallFile>,
+    pub(super) x1: Option<WallFile>,
+    pub(super) y0: Option<WallFile>,
+    pub(super) y1: Option<WallFile>,
+    pub(super) lower: Option<WallFile>,
+    pub(super) upper: Option<WallFile>,
+}
+
+/// The behaviour `file` gives a surface whose keys start `prefix` (`walls.floor`,
+/// `furnishings[0].top`); an error names the file and the line of the key at fault, or of the
+/// surface where a key is missing.
+pub(super) fn wall_behaviour(src: &SceneSource, prefix: &str, file: &WallFile) -> Result<WallBehaviour, Error> {
+    let key = |k: &str| format!("{prefix}.{k}");
+    // The line of the surface's key `k`, or of the surface.
+    let at = |k: &str, message: String| src.at(&[&key(k), prefix], message);
+    let at_surface = |message: String| src.at(&[prefix], message);
+    let constants = [file.k, file.kappa, file.vc, file.p, file.q];
+    let has_constants = constants.iter().any(Option::is_some);
+    let default = if file.preset.is_some() || has_constants { "law" } else { "sink" };
+    match file.behaviour.as_deref().unwrap_or(default) {
+        "sink" => Ok(WallBehaviour::Sink),
+        "reflect" => Ok(WallBehaviour::Reflect),
+        "law" => {
+            let mut law = match (file.preset.as_deref(), has_constants) {
+                (Some(_), true) => {
+                    return Err(at_surface(format!(
+                        "`{prefix}`: give a `preset` or the constants `k`, `kappa`, `vc`, not both"
+                    )))
+                }
+                (Some(id), false) => {
+                    WallLaw::preset(id).map_err(|e| at("preset", format!("`{}`: {e}", key("preset"))))?
+                }
+                (None, true) => {
+                    let need = |v: Option<f64>, k: &str| {
+                        v.ok_or_else(|| at_surface(format!("`{}` is needed with the law's constants", key(k))))
+                    };
+                    let (k, kappa, vc) = (need(file.k, "k")?, need(file.kappa, "kappa")?, need(file.vc, "vc")?);
+                    let params = LawParams::symmetric(k, kappa, vc, file.p.unwrap_or(1.0), file.q.unwrap_or(1.0));
+                    // The law's field as the file's key: `k1`/`k2` are the file's `k`, and so on.
+                    WallLaw::new(params).map_err(|e| {
+                        let file_key = e.field.trim_end_matches(['1', '2']);
+                        at(file_key, format!("`{prefix}`: {e}"))
+                    })?
+                }
+                (None, false) => {
+                    return Err(at_surface(format!(
+                        "`{}` (or the constants `k`, `kappa`, `vc`) is needed for a wall law",
+                        key("preset")
+                    )))
+                }
+            };
+            if let Some(mu) = file.mu {
+                law = WallLaw::new(law.params().with_friction(mu))
+                    .map_err(|e| at("mu", format!("`{}`: {e}", key("mu"))))?;
+            }
+            let size = match file.size_exponent {
+                None => None,
+                Some(alpha) => {
+                    let d_ref = file.reference_diameter.ok_or_else(|| {
+                        at("size_exponent", format!("`{}` is needed with a size exponent", key("reference_diameter")))
+                    })?;
+                    let size = SizeDependence::new(d_ref, alpha).map_err(|e| {
+                        let file_key = if e.field == "reference_diameter" { e.field } else { "size_exponent" };
+                        at(file_key, format!("`{prefix}`: {e}"))
+                    })?;
+                    Some(size)
+                }
+            };
+            Ok(WallBehaviour::Law { law, size })
+        }
+        other => Err(at(
+            "behaviour",
+            format!("`{}` = \"{other}\": expected \"sink\", \"reflect\" or \"law\"", key("behaviour")),
+        )),
+    }
+}
+
+/// The `[walls]` of a scene onto its walls: `all` first, then each wall's own table.
+pub(super) fn apply_walls(src: &SceneSource, scene: &mut Scene, walls: &WallsFile) -> Result<(), Error> {
+    if let Some(all) = &walls.all {
+        let behaviour = wall_behaviour(src, "walls.all", all)?;
+        scene.walls.iter_mut().for_each(|w| *w = behaviour);
+    }
+    let geometry = scene.geometry;
+    for wall in geometry.walls() {
+        let name = wall.name(&geometry);
+        let file = match name {
+            "floor" => &walls.floor,
+            "ceiling" => &walls.ceiling,
+            "x0" => &walls.x0,
+            "x1" => &walls.x1,
+            "y0" => &walls.y0,
+            "y1" => &walls.y1,
+            "lower" => &walls.lower,
+            _ => &walls.upper,
+        };
+        if let Some(file) = file {
+            scene.walls[wall.id] = wall_behaviour(src, &format!("walls.{name}"), file)?;
+        }
+    }
+    let room_only = [&walls.floor, &walls.ceiling, &walls.x0, &walls.x1, &walls.y0, &walls.y1];
+    let channel_only = [&walls.lower, &walls.upper];
+    // The other kind's walls, by key.
+    let (foreign, keys) = match geometry {
+        Geometry::Room { .. } => (channel_only.iter().any(|w| w.is_some()), &["walls.lower", "walls.upper"][..]),
+        Geometry::Channel { .. } => (
+            room_only.iter().any(|w| w.is_some()),
+            &["walls.floor", "walls.ceiling", "walls.x0", "walls.x1", "walls.y0", "walls.y1"][..],
+        ),
+    };
+    if foreign {
+        // At the first of the foreign keys in the file.
+        let keys = src.in_file_order(keys);
+        return Err(src.at(&keys, "`walls`: a room has floor, ceiling, x0, x1, y0, y1; a channel has lower and upper"));
+    }
+    Ok(())
+}
