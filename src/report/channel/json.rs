@@ -5,6 +5,7 @@ use serde::Serialize;
 use super::{ChannelRun, Row};
 use crate::Error;
 
+/// What `depo channel --format json` prints for a run: its settings and its rows.
 #[derive(Serialize)]
 pub struct Report<'a> {
     pub friction_velocity: f64,

@@ -52,6 +52,7 @@ impl ChannelOptions {
     }
 }
 
+/// One `tau+`'s figures beside the correlations, as the JSON gives them.
 #[derive(Serialize)]
 pub struct Row {
     pub tau_plus: f64,

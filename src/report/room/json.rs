@@ -6,6 +6,7 @@ use serde::Serialize;
 use super::{DistributionReport, RoomResult, Row};
 use crate::Error;
 
+/// What `depo room --format json` prints: the study's settings and its rows.
 #[derive(Serialize)]
 pub struct Report<'a> {
     pub size_m: [f64; 3],

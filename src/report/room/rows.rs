@@ -13,6 +13,7 @@ use serde::Serialize;
 use super::resolution::unresolved;
 use crate::report::{Measured, Tally};
 
+/// Lai & Nazaroff's deposition velocities (m/s) and loss rate for the same size and room.
 #[derive(Serialize)]
 pub struct Model {
     pub floor: f64,
@@ -39,6 +40,7 @@ pub struct ClassSampling {
     pub furnishings: f64,
 }
 
+/// One size's figures, as the JSON gives them.
 #[derive(Serialize)]
 pub struct Row {
     pub diameter_um: f64,
