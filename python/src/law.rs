@@ -192,7 +192,7 @@ impl PyWallLaw {
     /// bit. The GIL is released while the law runs; batches of PARALLEL_MIN (65536) particles
     /// or more run on several threads (set_num_threads). Results are those of the C library's
     /// depo_apply_f64 / depo_apply_f32 on the same values, bit for bit.
-    #[pyo3(signature = (vx, vy, vz, normal = [0.0, 0.0, 1.0], wx = None, wy = None, wz = None, radius = None,
+    #[pyo3(signature = (vx, vy, vz, normal = None, wx = None, wy = None, wz = None, radius = None,
                         nx = None, ny = None, nz = None, capture_velocity = None, tally = None),
            text_signature = "($self, vx, vy, vz, normal=(0.0, 0.0, 1.0), wx=None, wy=None, wz=None, radius=None, nx=None, ny=None, nz=None, capture_velocity=None, tally=None)")]
     #[allow(clippy::too_many_arguments)] // the C batch's arrays, by name
@@ -202,7 +202,7 @@ impl PyWallLaw {
         vx: &Bound<'py, PyAny>,
         vy: &Bound<'py, PyAny>,
         vz: &Bound<'py, PyAny>,
-        normal: [f64; 3],
+        normal: Option<&Bound<'py, PyAny>>,
         wx: Option<&Bound<'py, PyAny>>,
         wy: Option<&Bound<'py, PyAny>>,
         wz: Option<&Bound<'py, PyAny>>,
@@ -213,6 +213,12 @@ impl PyWallLaw {
         capture_velocity: Option<&Bound<'py, PyAny>>,
         tally: Option<Bound<'py, PyTally>>,
     ) -> PyResult<Bound<'py, PyArray1<u8>>> {
+        let normal = match normal {
+            None => [0.0, 0.0, 1.0],
+            Some(n) => n.extract::<[f64; 3]>().map_err(|_| {
+                PyValueError::new_err(format!("normal: expected 3 numbers (x, y, z), got {}", describe(n)))
+            })?,
+        };
         let batch = Batch { v: [vx, vy, vz], w: [wx, wy, wz], radius, normals: [nx, ny, nz], capture_velocity };
         let (outcome, sums) = if vx.cast::<PyArray1<f64>>().is_ok() {
             apply_typed::<f64>(py, &self.law, batch, normal, "float64", tally.is_some())?
