@@ -142,6 +142,7 @@ class WallLaw:
         nz: Optional[FloatArray] = None,
         capture_velocity: Optional[FloatArray] = None,
         tally: Optional[Tally] = None,
+        out: Optional[npt.NDArray[np.uint8]] = None,
     ) -> npt.NDArray[np.uint8]:
         """Applies the law to a batch of wall contacts, in place, and returns one outcome per
         particle as a uint8 array: REBOUND (0), CAPTURED (1), SKIPPED (2, not an impact) or
@@ -155,6 +156,7 @@ class WallLaw:
         - nx, ny, nz: one unit normal per particle.
         - capture_velocity: one capture velocity per particle (m/s), in place of the law's vc.
         - tally: a Tally that this call's counts and energy are added to.
+        - out: a uint8 array of n to write the outcomes into and return, in place of a new one.
 
         Contiguous arrays are used in place, without a copy; strided views (a column of an
         (n, 3) array) are gathered into a copy and written back, with the same results bit for
@@ -220,3 +222,14 @@ def set_num_threads(n: int) -> None:
     """How many threads depo runs a large batch on (PARALLEL_MIN particles or more): 0 (the
     default) one per core, 1 the calling thread only, 2 to MAX_THREADS a pool of depo's own.
     Process-wide; results are identical, bit for bit, for every setting."""
+
+def _bench_apply(
+    law: WallLaw,
+    vx: npt.NDArray[np.float64],
+    vy: npt.NDArray[np.float64],
+    vz: npt.NDArray[np.float64],
+    repeats: int,
+    calls: int = 1,
+) -> List[float]:
+    """For the benchmark (python/benches/apply.py) only: times `calls` consecutive WallLaw::apply calls
+    in Rust on a copy of (vx, vy, vz), normal (0, 0, 1), `repeats` times; seconds per repeat."""

@@ -68,7 +68,7 @@ fn capture_code(mode: CaptureMode) -> i32 {
 #[pyclass(name = "WallLaw", module = "depo", frozen, eq)]
 #[derive(Clone, PartialEq)]
 pub struct PyWallLaw {
-    law: WallLaw,
+    pub(crate) law: WallLaw,
 }
 
 #[pymethods]
@@ -186,6 +186,8 @@ impl PyWallLaw {
     /// - nx, ny, nz: one unit normal per particle.
     /// - capture_velocity: one capture velocity per particle (m/s), in place of the law's vc.
     /// - tally: a depo.Tally that this call's counts and energy are added to.
+    /// - out: a uint8 array of n to write the outcomes into and return, in place of a new one
+    ///   (saves allocating and first touching a new array on each call).
     ///
     /// Contiguous arrays are used in place, without a copy; strided views (a column of an
     /// (n, 3) array) are gathered into a copy and written back, with the same results bit for
@@ -193,8 +195,8 @@ impl PyWallLaw {
     /// or more run on several threads (set_num_threads). Results are those of the C library's
     /// depo_apply_f64 / depo_apply_f32 on the same values, bit for bit.
     #[pyo3(signature = (vx, vy, vz, normal = None, wx = None, wy = None, wz = None, radius = None,
-                        nx = None, ny = None, nz = None, capture_velocity = None, tally = None),
-           text_signature = "($self, vx, vy, vz, normal=(0.0, 0.0, 1.0), wx=None, wy=None, wz=None, radius=None, nx=None, ny=None, nz=None, capture_velocity=None, tally=None)")]
+                        nx = None, ny = None, nz = None, capture_velocity = None, tally = None, out = None),
+           text_signature = "($self, vx, vy, vz, normal=(0.0, 0.0, 1.0), wx=None, wy=None, wz=None, radius=None, nx=None, ny=None, nz=None, capture_velocity=None, tally=None, out=None)")]
     #[allow(clippy::too_many_arguments)] // the C batch's arrays, by name
     fn apply<'py>(
         &self,
@@ -212,6 +214,7 @@ impl PyWallLaw {
         nz: Option<&Bound<'py, PyAny>>,
         capture_velocity: Option<&Bound<'py, PyAny>>,
         tally: Option<Bound<'py, PyTally>>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray1<u8>>> {
         let normal = match normal {
             None => [0.0, 0.0, 1.0],
@@ -219,7 +222,8 @@ impl PyWallLaw {
                 PyValueError::new_err(format!("normal: expected 3 numbers (x, y, z), got {}", describe(n)))
             })?,
         };
-        let batch = Batch { v: [vx, vy, vz], w: [wx, wy, wz], radius, normals: [nx, ny, nz], capture_velocity };
+        let out = out.map(|o| typed::<u8>(o, "out", "uint8")).transpose()?;
+        let batch = Batch { v: [vx, vy, vz], w: [wx, wy, wz], radius, normals: [nx, ny, nz], capture_velocity, out };
         let (outcome, sums) = if vx.cast::<PyArray1<f64>>().is_ok() {
             apply_typed::<f64>(py, &self.law, batch, normal, "float64", tally.is_some())?
         } else if vx.cast::<PyArray1<f32>>().is_ok() {
@@ -262,6 +266,8 @@ struct Batch<'a, 'py> {
     radius: Option<&'a Bound<'py, PyAny>>,
     normals: [Option<&'a Bound<'py, PyAny>>; 3],
     capture_velocity: Option<&'a Bound<'py, PyAny>>,
+    /// The outcome array to write, else a new one.
+    out: Option<Bound<'py, PyArray1<u8>>>,
 }
 
 /// `apply` in one precision: borrows the arrays (see `arrays`), builds the batch with the
@@ -309,9 +315,9 @@ fn apply_typed<'py, T: Real + Element>(
     let vc_array = batch.capture_velocity.map(|vc| array(vc, "capture_velocity")).transpose()?;
     let vc = vc_array.as_ref().map(|a| Input::new(a, "capture_velocity")).transpose()?;
 
-    let outcome = PyArray1::<u8>::zeros(py, n, false);
-    let mut outcome_guard = outcome.readwrite();
-    let outcome_bytes = outcome_guard.as_slice_mut()?;
+    let outcome = batch.out.unwrap_or_else(|| PyArray1::<u8>::zeros(py, n, false));
+    let mut outcome_guard = Output::new(&outcome, "out")?;
+    let outcome_bytes = outcome_guard.slice();
     let [vx, vy, vz] = &mut velocity;
     let normals = match &normals {
         Some([nx, ny, nz]) => Normals::PerParticle([nx.slice(), ny.slice(), nz.slice()]),
@@ -350,7 +356,7 @@ fn apply_typed<'py, T: Real + Element>(
             w.finish();
         }
     }
-    drop(outcome_guard);
+    outcome_guard.finish();
     Ok((outcome, sums))
 }
 

@@ -4,7 +4,8 @@
 //! binds the Rust crates directly, never through the C ABI: `law` the wall law on numpy
 //! arrays (`WallLaw`, `Tally`), `arrays` how numpy arrays are borrowed (contiguous ones without
 //! a copy, strided views gathered and scattered back), `jobs` the `depo` command's other jobs
-//! (`fit`, `capture_velocity`, `presets`), `threads` where large batches run.
+//! (`fit`, `capture_velocity`, `presets`), `threads` where large batches run, `bench` the Rust
+//! side of the Python benchmark.
 //!
 //! Conventions: SI units throughout; a bad value is a `ValueError` whose message is the one-line
 //! message of the C ABI or the command, naming the parameter; a wrong array type or dtype is a
@@ -14,6 +15,7 @@
 use pyo3::prelude::*;
 
 mod arrays;
+mod bench;
 mod jobs;
 mod law;
 mod threads;
@@ -36,5 +38,6 @@ fn _depo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(jobs::fit, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::capture_velocity, m)?)?;
     m.add_function(wrap_pyfunction!(threads::set_num_threads, m)?)?;
+    m.add_function(wrap_pyfunction!(bench::_bench_apply, m)?)?;
     Ok(())
 }

@@ -31,6 +31,12 @@ def _built(variable, name):
     pytest.skip(f"{name} is not built (cargo build -p depo-capi / --bin depo), and {variable} is not set")
 
 
+def pytest_report_header(config):
+    import depo
+
+    return f"depo {depo.__version__} from {depo._depo.__file__}"
+
+
 @pytest.fixture(scope="session")
 def repo():
     return REPO

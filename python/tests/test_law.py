@@ -56,6 +56,21 @@ def test_a_rebound_a_capture_and_a_skip_in_place():
     assert e == pytest.approx(0.7319907, abs=1e-6)
 
 
+def test_outcomes_go_into_a_given_array():
+    law = depo.WallLaw.preset("li1997-sio2")
+    v1, v2 = random_batch(500, 7), random_batch(500, 7)
+    out = np.full(500, 9, dtype=np.uint8)
+    assert law.apply(*v1, out=out) is out
+    assert out.tobytes() == law.apply(*v2).tobytes()
+    column = np.zeros((500, 2), dtype=np.uint8)[:, 1]
+    law.apply(*random_batch(500, 7), out=column)
+    assert column.tobytes() == out.tobytes()
+    with pytest.raises(TypeError, match="out: expected a 1-D numpy array of uint8"):
+        law.apply(*v1, out=np.zeros(500))
+    with pytest.raises(ValueError, match="batch array outcome has 3 elements, expected 500"):
+        law.apply(*v1, out=np.zeros(3, dtype=np.uint8))
+
+
 def test_coefficients_keep_the_shape_and_match_the_curve():
     law = depo.WallLaw.preset("li1997-sio2")
     vn = np.array([[0.01, 0.074], [0.0741, -1.0]])
