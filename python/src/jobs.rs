@@ -3,6 +3,8 @@
 //! keys, and fails with the command's one-line messages, naming the parameter instead of the
 //! flag (src/cli/presets.rs, fit.rs, capture.rs; tests/test_jobs.py compares them).
 
+use depo::scene_file::law_entry;
+use depo::text::shown;
 use depo_wall_model::fit::{fit as fit_law, Exponents, FitReport, Sample};
 use depo_wall_model::theory::{
     dahneke_capture_velocity, effective_modulus, hamaker_well_depth, jkr_capture_velocity, jkr_energy_loss,
@@ -48,38 +50,6 @@ pub fn presets(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
 
 /// The surface keys a scene file takes a wall law under (as `depo fit --surface`).
 const SURFACES: [&str; 11] = ["all", "floor", "ceiling", "x0", "x1", "y0", "y1", "lower", "upper", "bottom", "top"];
-
-/// A number for a TOML file that reads back as the same `f64`, as `depo fit` prints it.
-fn toml_float(x: f64) -> String {
-    format!("{x:?}")
-}
-
-/// The scene file's entry that gives `surface` the fitted law, as `depo fit` prints it.
-fn scene_entry(surface: &str, k: f64, kappa: f64, vc: f64, p: f64, q: f64) -> String {
-    format!(
-        "{surface} = {{ behaviour = \"law\", k = {}, kappa = {}, vc = {}, p = {}, q = {} }}",
-        toml_float(k),
-        toml_float(kappa),
-        toml_float(vc),
-        toml_float(p),
-        toml_float(q)
-    )
-}
-
-/// A number as the command's messages show it: five significant digits, plain when short
-/// (`src/cli/mod.rs`, `shown`).
-fn shown(x: f64) -> String {
-    if !x.is_finite() {
-        return x.to_string();
-    }
-    let rounded: f64 = format!("{x:.5e}").parse().unwrap_or(x);
-    let plain = rounded.to_string();
-    if plain.len() <= 10 {
-        plain
-    } else {
-        format!("{rounded:e}")
-    }
-}
 
 /// The 1-D float64 values of an array-like, named for messages.
 fn values(py: Python<'_>, obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
@@ -177,7 +147,7 @@ pub fn fit<'py>(
     d.set_item("q_se", se.q)?;
     d.set_item("vc_extrapolated", report.vc_extrapolated)?;
     d.set_item("samples", report.samples)?;
-    d.set_item("scene_entry", scene_entry(surface, params.k1, params.kappa1, params.vc, params.p, params.q))?;
+    d.set_item("scene_entry", law_entry(surface, &params))?;
     if report.vc_extrapolated {
         PyErr::warn(
             py,

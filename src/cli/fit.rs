@@ -61,28 +61,6 @@ fn entry_home(surface: &str) -> &'static str {
     }
 }
 
-/// A number for a TOML file that reads back as the same `f64`: `{:?}` prints the shortest
-/// digits that round-trip, as `{}` does, but always with a decimal point or an exponent
-/// (`1.0`, `1e-7`), so that TOML reads a float, not an integer, and very small or large
-/// values stay short.
-fn toml_float(x: f64) -> String {
-    format!("{x:?}")
-}
-
-/// The `[walls]` entry (or furnishing face) that gives `surface` the fitted law, with the keys
-/// the scene reader takes for a law's own constants. It leaves out `mu`: the fit has no
-/// friction coefficient (normal impacts do not measure one).
-fn scene_entry(surface: &str, k: f64, kappa: f64, vc: f64, p: f64, q: f64) -> String {
-    format!(
-        "{surface} = {{ behaviour = \"law\", k = {}, kappa = {}, vc = {}, p = {}, q = {} }}",
-        toml_float(k),
-        toml_float(kappa),
-        toml_float(vc),
-        toml_float(p),
-        toml_float(q)
-    )
-}
-
 /// The fit as printed; the JSON keys are stable.
 #[derive(Serialize)]
 struct Output {
@@ -168,7 +146,7 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
         q_se: se.q,
         vc_extrapolated: report.vc_extrapolated,
         samples: report.samples,
-        scene_entry: scene_entry(&args.surface, params.k1, params.kappa1, params.vc, params.p, params.q),
+        scene_entry: depo::scene_file::law_entry(&args.surface, &params),
     };
     match args.format {
         FitFormat::Json => out!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?),

@@ -29,6 +29,7 @@ use serde::Deserialize;
 
 pub use channel::ChannelScene;
 pub use room::RoomScene;
+pub use walls::law_entry;
 
 use crate::text::shown;
 

@@ -7,6 +7,29 @@ use serde::Deserialize;
 
 use super::{Error, SceneSource};
 
+/// A number for a TOML file that reads back as the same `f64`: `{:?}` prints the shortest
+/// digits that round-trip, as `{}` does, but always with a decimal point or an exponent
+/// (`1.0`, `1e-7`), so that TOML reads a float, not an integer, and very small or large
+/// values stay short.
+fn toml_float(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// The `[walls]` entry (or furnishing face) that gives `surface` a law of its own constants
+/// `k = k1`, `kappa = kappa1`, `vc`, `p`, `q` (m/s for the first three), with the keys the
+/// reader takes, every number reading back as the same `f64`: the line `depo fit` prints. It
+/// leaves out `mu`: a fit has no friction coefficient (normal impacts do not measure one).
+pub fn law_entry(surface: &str, params: &LawParams) -> String {
+    format!(
+        "{surface} = {{ behaviour = \"law\", k = {}, kappa = {}, vc = {}, p = {}, q = {} }}",
+        toml_float(params.k1),
+        toml_float(params.kappa1),
+        toml_float(params.vc),
+        toml_float(params.p),
+        toml_float(params.q)
+    )
+}
+
 #[derive(Deserialize, Default, Clone)]
 #[serde(deny_unknown_fields)]
 pub(super) struct WallFile {
