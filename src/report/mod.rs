@@ -10,7 +10,7 @@
 pub mod channel;
 pub mod room;
 
-use depo_tracker::{Estimate, WallTally};
+use depo_tracker::{Cancel, Estimate, WallTally};
 use serde::Serialize;
 
 /// Writes a line into a `String` report (writing to a `String` cannot fail).
@@ -22,8 +22,17 @@ macro_rules! outln {
 }
 pub(crate) use outln;
 
-/// What a study tells its caller as it runs: a progress bar or a binding's callback.
+/// What a study tells its caller as it runs: a progress bar or a binding's callback; and the
+/// token through which the caller may stop it.
 pub trait Progress {
+    /// A token the caller may cancel from another thread to stop the study: every run of the
+    /// study watches it ([`Cancel::watch`]), and the study then ends with
+    /// [`Error::Cancelled`](crate::Error::Cancelled) within a chunk of particles' time. `None`
+    /// (the default): the study runs to its end.
+    fn cancel(&self) -> Option<Cancel> {
+        None
+    }
+
     /// A study of `total` runs starts; `what` names them (`sizes`, `tau+`).
     fn start(&mut self, total: usize, what: &str) {
         let _ = (total, what);

@@ -148,9 +148,14 @@ pub fn run(scene: ChannelScene, options: &ChannelOptions, progress: &mut dyn Pro
 fn run_one(study: ChannelStudy, source: &SceneSource, progress: &mut dyn Progress) -> Result<ChannelRun, Error> {
     progress.start(study.tau_plus.len(), "tau+");
     let start = std::time::Instant::now();
-    let points = study.run(|done| progress.done(done));
+    let cancel = progress.cancel();
+    let mut run_all = || study.run(|done| progress.done(done));
+    let points = match cancel {
+        Some(cancel) => cancel.watch(run_all),
+        None => run_all(),
+    };
     progress.finish();
-    let points = points.map_err(|e| source.scene_error(&e))?;
+    let points = points.map_err(|e| Error::of_run(&e, |e| source.scene_error(e)))?;
     let seconds = start.elapsed().as_secs_f64();
     let u_star = study.scene.flow.friction_velocity().unwrap_or(0.0);
     let nu = study.scene.air.kinematic_viscosity();

@@ -72,17 +72,22 @@ pub fn run(scene: RoomScene, progress: &mut dyn Progress) -> Result<RoomResult, 
     // A size distribution runs the study at its bins instead of the study's diameters.
     let distribution = scene.distribution.map(|distribution| DistributionStudy { study: study.clone(), distribution });
     let runs = match &distribution {
-        Some(d) => d.bins().map_err(|e| scene.source.scene_error(&e))?.0.len(),
+        Some(d) => d.bins().map_err(|e| Error::of_run(&e, |e| scene.source.scene_error(e)))?.0.len(),
         None => study.diameters.len(),
     };
     progress.start(runs, "sizes");
     let start = std::time::Instant::now();
-    let outcome = match &distribution {
+    let cancel = progress.cancel();
+    let mut run_all = || match &distribution {
         Some(d) => d.run(|done| progress.done(done)).map(|(points, balance)| (points, Some(balance))),
         None => study.run(|done| progress.done(done)).map(|points| (points, None)),
     };
+    let outcome = match cancel {
+        Some(cancel) => cancel.watch(run_all),
+        None => run_all(),
+    };
     progress.finish();
-    let (points, balance) = outcome.map_err(|e| scene.source.scene_error(&e))?;
+    let (points, balance) = outcome.map_err(|e| Error::of_run(&e, |e| scene.source.scene_error(e)))?;
     if distribution.is_some() {
         study.diameters = points.iter().map(|p| p.diameter).collect();
     }

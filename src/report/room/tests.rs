@@ -104,3 +104,29 @@ fn a_study_s_json_is_the_same_from_its_file_or_its_table() {
     let reseeded = json::to_json(&study(&seeded, &mut crate::report::Silent).unwrap()).unwrap();
     assert_ne!(reseeded, from_file);
 }
+
+/// Stops the study through its token when the first size is done.
+struct StopAfterOne(depo_tracker::Cancel);
+
+impl crate::report::Progress for StopAfterOne {
+    fn cancel(&self) -> Option<depo_tracker::Cancel> {
+        Some(self.0.clone())
+    }
+    fn done(&mut self, _done: usize) {
+        self.0.cancel();
+    }
+}
+
+/// A study whose caller cancels its token after the first size ends with `Error::Cancelled`
+/// before the next size's run, not with a result nor a scene's error.
+#[test]
+fn a_cancelled_study_ends_with_the_cancelled_error() {
+    use crate::scene_file::SceneInput;
+    let text = "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [3e-6, 10e-6]\ncount = 20\n\
+                target_error = 0.0\n[run]\nduration = 20.0\n";
+    let table = SceneInput::Table { table: toml::from_str(text).unwrap(), name: "scene".into(), dir: ".".into() };
+    let mut progress = StopAfterOne(depo_tracker::Cancel::new());
+    let outcome = study(&RoomOptions::new(table), &mut progress);
+    assert_eq!(outcome.err(), Some(Error::Cancelled));
+    assert_eq!(Error::Cancelled.to_string(), "the study was cancelled");
+}

@@ -18,6 +18,16 @@
 //! method's over the independent particles, `sqrt(n / (n - 1) sum (X_i - R E_i)^2) / sum E_i`.
 //! For plain tracking with rare deposits this is the familiar `v_d / sqrt(N)` for `N`
 //! deposits.
+//!
+//! ## Stopping a run
+//! A caller on another thread (a binding that sees Ctrl-C, a user interface) stops a run, or a
+//! whole study, with a [`Cancel`] token it hands in through [`Cancel::watch`]: each chunk of
+//! particles checks the token before it starts, so a run ends within about a chunk's time
+//! (8 particles through the whole run on each thread) with [`SceneError::cancelled`].
+
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use rayon::prelude::*;
 
@@ -33,6 +43,60 @@ const CHUNK: usize = 8;
 
 pub use crate::tracking::{MAX_STEP_GRADIENT, MAX_STEP_GRADIENT_MIDPOINT};
 
+/// A request to stop runs early, shared between the thread that runs them and the one that
+/// asks: clones are the same token. [`Cancel::watch`] hands it to every run (and so every
+/// study) started on the calling thread while its closure runs; [`Cancel::cancel`], from any
+/// thread, then ends each of them with [`SceneError::cancelled`] at the next chunk of
+/// particles, on every thread the run uses. The scene, and the functions between a study and
+/// its runs, are unchanged by it.
+#[derive(Clone, Debug, Default)]
+pub struct Cancel(Arc<AtomicBool>);
+
+thread_local! {
+    /// The token watched by the runs this thread starts ([`Cancel::watch`]).
+    static WATCHED: RefCell<Option<Cancel>> = const { RefCell::new(None) };
+}
+
+impl Cancel {
+    /// A token not yet cancelled.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Asks every run watching this token to stop; it stays cancelled.
+    pub fn cancel(&self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+
+    /// Whether [`Cancel::cancel`] has been called on this token or a clone.
+    #[must_use]
+    pub fn is_cancelled(&self) -> bool {
+        self.0.load(Ordering::Relaxed)
+    }
+
+    /// Runs `f` with this token watched by every run it starts on this thread (the tracker
+    /// starts a study's runs on the study's own thread, and spreads only their particles over
+    /// the pool, which the token follows); the previous token, if any, is watched again after.
+    pub fn watch<R>(&self, f: impl FnOnce() -> R) -> R {
+        /// Puts the previous token back, even if `f` unwinds.
+        struct Restore(Option<Cancel>);
+        impl Drop for Restore {
+            fn drop(&mut self) {
+                let previous = self.0.take();
+                WATCHED.with(|w| *w.borrow_mut() = previous);
+            }
+        }
+        let _restore = Restore(WATCHED.with(|w| w.replace(Some(self.clone()))));
+        f()
+    }
+
+    /// The token the runs of this thread watch, if any.
+    fn watched() -> Option<Self> {
+        WATCHED.with(|w| w.borrow().clone())
+    }
+}
+
 /// Tracks `injection` through `scene` on the current rayon pool.
 ///
 /// Besides [`Scene::validate`], a turbulent scene's `dt` must keep `dt |d sigma / dy|` at or
@@ -40,7 +104,7 @@ pub use crate::tracking::{MAX_STEP_GRADIENT, MAX_STEP_GRADIENT_MIDPOINT};
 /// the tabulated rms profiles: an error names `dt` otherwise.
 pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
     let prepared = prepare(scene, injection)?;
-    let (records, particles, tallies) = track_range(scene, &prepared, 0..injection.count);
+    let (records, particles, tallies) = track_range(scene, &prepared, 0..injection.count)?;
     let duration = prepared.steps as f64 * scene.dt;
     let smallest_weight = smallest_weight(scene);
     Ok(Run {
@@ -66,7 +130,7 @@ pub fn run_more(scene: &Scene, injection: &Injection, mut previous: Run) -> Resu
     if done > injection.count {
         return Err(SceneError::new("count", injection.count as f64, "is fewer than the particles already run"));
     }
-    let (records, particles, tallies) = track_range(scene, &prepared, done..injection.count);
+    let (records, particles, tallies) = track_range(scene, &prepared, done..injection.count)?;
     previous.smallest_weight = previous.smallest_weight.min(smallest_weight(scene));
     previous.records.extend(records);
     previous.particles.extend(particles);
@@ -100,19 +164,28 @@ fn prepare<'a>(scene: &'a Scene, injection: &'a Injection) -> Result<Prepared<'a
     Ok(prepared)
 }
 
+/// What [`track_range`] gives: records, particle tallies, wall tallies.
+type Tracked = (Vec<Record>, Vec<ParticleTally>, Vec<WallTally>);
+
 /// Tracks particles `ids` in chunks of [`CHUNK`] ids (fixed, whatever the thread count):
-/// their records and tallies in id order, and their wall tallies summed in chunk order.
-fn track_range(
-    scene: &Scene,
-    prepared: &Prepared<'_>,
-    ids: std::ops::Range<usize>,
-) -> (Vec<Record>, Vec<ParticleTally>, Vec<WallTally>) {
+/// their records and tallies in id order, and their wall tallies summed in chunk order. A
+/// chunk does not start once the watched [`Cancel`] is cancelled: the range then ends with
+/// [`SceneError::cancelled`].
+fn track_range(scene: &Scene, prepared: &Prepared<'_>, ids: std::ops::Range<usize>) -> Result<Tracked, SceneError> {
     let wall_count = prepared.surfaces.len();
     let window = prepared.window;
     let first = ids.start;
-    let chunks: Vec<(Vec<Record>, Vec<ParticleTally>, Vec<WallTally>)> = (first / CHUNK..ids.end.div_ceil(CHUNK))
+    let cancel = Cancel::watched();
+    let stopped = || cancel.as_ref().is_some_and(Cancel::is_cancelled);
+    if stopped() {
+        return Err(SceneError::cancelled());
+    }
+    let chunks: Option<Vec<Tracked>> = (first / CHUNK..ids.end.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
+            if stopped() {
+                return None;
+            }
             let mut tally = vec![WallTally::default(); wall_count];
             let ids = (c * CHUNK).max(first)..((c + 1) * CHUNK).min(ids.end);
             let (records, particles) = match &scene.excursions {
@@ -124,9 +197,10 @@ fn track_range(
                     (records, particles)
                 }
             };
-            (records, particles, tally)
+            Some((records, particles, tally))
         })
         .collect();
+    let chunks = chunks.ok_or_else(SceneError::cancelled)?;
     let mut records = Vec::with_capacity(ids.len());
     let mut particles = Vec::with_capacity(ids.len());
     let mut tallies = vec![WallTally::default(); wall_count];
@@ -137,7 +211,7 @@ fn track_range(
             *sum += x;
         }
     }
-    (records, particles, tallies)
+    Ok((records, particles, tallies))
 }
 
 /// A value with its standard error.
@@ -420,5 +494,59 @@ impl Run {
             map[i * bins[1] + j] += 1;
         }
         map
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::{Duration, Instant};
+
+    use super::*;
+    use crate::model::geometry::Geometry;
+    use crate::model::scene::SizeDistribution;
+
+    /// Brownian 0.1 um particles in still air in a 1 m box for 1000 s of 10 ms steps: about
+    /// 1e5 steps each, far more than a second's work for `count` of them.
+    fn long_run(count: usize) -> (Scene, Injection) {
+        let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.01, 1000.0);
+        scene.brownian = true;
+        (scene, Injection::new(count, SizeDistribution::Monodisperse { diameter: 0.1e-6 }, 1000.0))
+    }
+
+    /// A run cancelled from another thread ends within a second with the cancelled error, where
+    /// it would take minutes; the token is no longer watched after `watch` returns.
+    #[test]
+    fn a_cancelled_run_returns_quickly() {
+        let (scene, injection) = long_run(1_000_000);
+        let cancel = Cancel::new();
+        let start = Instant::now();
+        let result = std::thread::scope(|s| {
+            s.spawn(|| {
+                std::thread::sleep(Duration::from_millis(200));
+                cancel.cancel();
+            });
+            cancel.watch(|| run(&scene, &injection))
+        });
+        let took = start.elapsed();
+        let error = result.expect_err("the run was cancelled");
+        assert!(error.is_cancelled(), "{error}");
+        assert_eq!(error.to_string(), "the run was cancelled");
+        assert!(took < Duration::from_secs(2), "the cancelled run took {took:?}");
+        // Without the token watched, a (short) run goes through.
+        let (scene, injection) = long_run(4);
+        assert_eq!(run(&scene, &injection).map(|r| r.records.len()), Ok(4));
+    }
+
+    /// A token cancelled before the run stops it before any particle; one not cancelled
+    /// changes nothing, to the bit.
+    #[test]
+    fn a_watched_token_changes_nothing_until_cancelled() {
+        let (mut scene, injection) = long_run(16);
+        scene.duration = 1.0;
+        let cancelled = Cancel::new();
+        cancelled.cancel();
+        assert!(cancelled.watch(|| run(&scene, &injection)).is_err_and(|e| e.is_cancelled()));
+        let watched = Cancel::new().watch(|| run(&scene, &injection)).unwrap();
+        assert_eq!(watched, run(&scene, &injection).unwrap());
     }
 }
