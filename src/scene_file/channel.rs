@@ -43,14 +43,14 @@ pub struct ChannelScene {
 /// of the run's errors).
 pub(super) fn channel(input: &SceneInput) -> Result<ChannelScene, Error> {
     let mut study = ChannelStudy::default();
-    let Some((text, name, _)) = text_of(input)? else {
+    let Some((text, name, _, lines)) = text_of(input)? else {
         // Half the height in wall units.
         let unit = study.scene.air.kinematic_viscosity() / study.scene.flow.friction_velocity().unwrap_or(1.0);
         let re_tau = study.scene.geometry.size()[2] / 2.0 / unit;
         let source = SceneSource { re_tau: Some(re_tau), ..SceneSource::built_in("the built-in channel") };
         return Ok(ChannelScene { study, source });
     };
-    let (file, mut src): (ChannelFile, SceneSource) = parse(text, &name)?;
+    let (file, mut src): (ChannelFile, SceneSource) = parse(text, &name, lines)?;
     let scene = &mut study.scene;
     apply_air(scene, &file.air);
     let u_star = file.channel.friction_velocity.unwrap_or(scene.flow.friction_velocity().unwrap_or(0.3));

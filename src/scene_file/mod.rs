@@ -46,8 +46,9 @@ pub enum SceneInput {
     /// A scene file's text: `name` stands in for its path in errors, and a `size_bins` file is
     /// read from `dir`.
     Text { text: String, name: String, dir: PathBuf },
-    /// A parsed TOML table (a binding's dictionary), as [`SceneInput::Text`] gives its text;
-    /// errors name `name` and the line of the key in the table written as TOML.
+    /// A parsed TOML table (a binding's dictionary), read as [`SceneInput::Text`] reads the
+    /// table written as TOML; a table has no lines, so its errors name `name` and the key
+    /// (`scene: `run.dt` = ...`), without a line.
     Table { table: toml::Table, name: String, dir: PathBuf },
 }
 
@@ -68,20 +69,20 @@ pub fn channel_scene(input: &SceneInput) -> Result<ChannelScene, crate::Error> {
     Ok(channel::channel(input)?)
 }
 
-/// A scene file's text, what its errors call it, and the directory its own files are read
-/// from; `None` for the built-in scene.
-fn text_of(input: &SceneInput) -> Result<Option<(String, String, PathBuf)>, Error> {
+/// A scene file's text, what its errors call it, the directory its own files are read from,
+/// and whether its errors give lines (not a table's); `None` for the built-in scene.
+fn text_of(input: &SceneInput) -> Result<Option<(String, String, PathBuf, bool)>, Error> {
     let parent = |p: &Path| p.parent().unwrap_or(Path::new(".")).to_path_buf();
     Ok(match input {
         SceneInput::BuiltIn => None,
         SceneInput::Path(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-            Some((text, path.display().to_string(), parent(path)))
+            Some((text, path.display().to_string(), parent(path), true))
         }
-        SceneInput::Text { text, name, dir } => Some((text.clone(), name.clone(), dir.clone())),
+        SceneInput::Text { text, name, dir } => Some((text.clone(), name.clone(), dir.clone(), true)),
         SceneInput::Table { table, name, dir } => {
             let text = toml::to_string(table).map_err(|e| format!("{name}: {e}"))?;
-            Some((text, name.clone(), dir.clone()))
+            Some((text, name.clone(), dir.clone(), false))
         }
     })
 }
@@ -95,19 +96,21 @@ pub struct SceneSource {
     text: String,
     /// A channel's `Re_tau`; `None` for a room.
     re_tau: Option<f64>,
+    /// Whether errors give the line of a key: not for a table, which has none.
+    lines: bool,
 }
 
 impl SceneSource {
     /// A built-in scene's: `name` stands in for the file, and no key has a line.
     fn built_in(name: &str) -> Self {
-        Self { name: name.to_string(), text: String::new(), re_tau: None }
+        Self { name: name.to_string(), text: String::new(), re_tau: None, lines: false }
     }
 
     /// `message` as the TOML errors put it, `FILE line N: message`, with the line of the
     /// first of `keys` (dotted, as [`line_of_key`] takes them) the file gives; `FILE: message`
     /// where it gives none of them (their values are the defaults).
     fn at(&self, keys: &[&str], message: impl std::fmt::Display) -> Error {
-        match keys.iter().find_map(|key| self.line(key)) {
+        match keys.iter().find_map(|key| self.line(key)).filter(|_| self.lines) {
             Some(line) => format!("{} line {line}: {message}", self.name),
             None => format!("{}: {message}", self.name),
         }
@@ -129,7 +132,11 @@ impl SceneSource {
 
     /// `message` at the line of the byte `offset` into the file (a span of its values).
     fn at_offset(&self, offset: usize, message: impl std::fmt::Display) -> Error {
-        format!("{} line {}: {message}", self.name, line_of(&self.text, offset))
+        if self.lines {
+            format!("{} line {}: {message}", self.name, line_of(&self.text, offset))
+        } else {
+            format!("{}: {message}", self.name)
+        }
     }
 
     /// The error of a run of this scene, with the line of the key its field names where the
@@ -218,17 +225,59 @@ fn line_of_key(text: &str, root: &toml::de::DeTable<'_>, key: &str) -> Option<us
 }
 
 /// Parses a scene file's `text`, keeping it for the lines of later errors; a TOML error
-/// names the file (`name`), the line and the key.
-fn parse<T: for<'de> Deserialize<'de>>(text: String, name: &str) -> Result<(T, SceneSource), Error> {
+/// names the file (`name`), the line and the key. Without `lines` (a table's text), an error
+/// names the key its span falls on instead of the line.
+fn parse<T: for<'de> Deserialize<'de>>(text: String, name: &str, lines: bool) -> Result<(T, SceneSource), Error> {
     let file = toml::from_str(&text).map_err(|e| {
-        let line = e.span().map(|s| line_of(&text, s.start));
         let message = e.message().trim().replace('\n', " ");
-        match line {
-            Some(line) => format!("{name} line {line}: {message}"),
+        let start = e.span().map(|s| s.start);
+        match start {
+            Some(offset) if lines => format!("{name} line {}: {message}", line_of(&text, offset)),
+            Some(offset) => match key_at(&text, offset) {
+                Some(key) => format!("{name}: `{key}`: {message}"),
+                None => format!("{name}: {message}"),
+            },
             None => format!("{name}: {message}"),
         }
     })?;
-    Ok((file, SceneSource { name: name.to_string(), text, re_tau: None }))
+    Ok((file, SceneSource { name: name.to_string(), text, re_tau: None, lines }))
+}
+
+/// The dotted key (`walls.floor.k`, `furnishings[1].low`) of the TOML document `text` whose
+/// name starts last at or before the byte `offset`: the key an error at `offset` is about
+/// (its value follows it on its line, or the offset is on the key itself).
+fn key_at(text: &str, offset: usize) -> Option<String> {
+    use toml::de::{DeTable, DeValue};
+    fn walk(table: &DeTable<'_>, prefix: &str, offset: usize, best: &mut Option<(usize, String)>) {
+        for (k, v) in table {
+            let start = k.span().start;
+            let path = if prefix.is_empty() { k.get_ref().to_string() } else { format!("{prefix}.{}", k.get_ref()) };
+            if start <= offset && best.as_ref().is_none_or(|(s, _)| start >= *s) {
+                *best = Some((start, path.clone()));
+            }
+            within(v.get_ref(), &path, offset, best);
+        }
+    }
+    fn within(value: &DeValue<'_>, path: &str, offset: usize, best: &mut Option<(usize, String)>) {
+        match value {
+            DeValue::Table(t) => walk(t, path, offset, best),
+            DeValue::Array(a) => {
+                for (i, entry) in a.iter().enumerate() {
+                    let here = format!("{path}[{i}]");
+                    let start = entry.span().start;
+                    if start <= offset && best.as_ref().is_none_or(|(s, _)| start > *s) {
+                        *best = Some((start, here.clone()));
+                    }
+                    within(entry.get_ref(), &here, offset, best);
+                }
+            }
+            _ => {}
+        }
+    }
+    let root = DeTable::parse(text).ok()?;
+    let mut best = None;
+    walk(root.get_ref(), "", offset, &mut best);
+    best.map(|(_, key)| key)
 }
 
 /// The line (from 1) of a byte offset into `text`.

@@ -71,11 +71,11 @@ pub struct RoomScene {
 /// The room scene of `input` (its study and its size distribution), or the built-in one.
 pub(super) fn room_scene(input: &SceneInput) -> Result<RoomScene, Error> {
     let mut study = RoomStudy::default();
-    let Some((text, name, dir)) = text_of(input)? else {
+    let Some((text, name, dir, lines)) = text_of(input)? else {
         let source = SceneSource::built_in("the built-in room");
         return Ok(RoomScene { study, distribution: None, source, warnings: Vec::new() });
     };
-    let (file, src): (RoomFile, SceneSource) = parse(text, &name)?;
+    let (file, src): (RoomFile, SceneSource) = parse(text, &name, lines)?;
     let scene = &mut study.scene;
     if let Some(size) = file.room.size {
         scene.geometry = Geometry::Room { size };

@@ -205,7 +205,22 @@ fn a_scene_from_text_or_a_table_reads_as_its_file() {
     assert_eq!(room_scene(&from_text).err(), Some(format!("scene line 2: {message}")));
     let table: toml::Table = toml::from_str(text).unwrap();
     let from_table = SceneInput::Table { table, name: "scene".into(), dir: dir.clone() };
-    assert_eq!(room_scene(&from_table).err(), Some(format!("scene line 2: {message}")));
+    // A table has no lines: its errors name the key alone, the reader's and the TOML's.
+    assert_eq!(room_scene(&from_table).err(), Some(format!("scene: {message}")));
+    let wrong_type = "[room]\nsize = [4.0, 3.0, 2.5]\n[run]\nseed = 1\nduration = \"long\"\n";
+    let table =
+        SceneInput::Table { table: toml::from_str(wrong_type).unwrap(), name: "scene".into(), dir: dir.clone() };
+    let error = room_scene(&table).err().unwrap();
+    assert!(error.starts_with("scene: `run.duration`: invalid type: string"), "{error}");
+    let unknown = "[walls]\nfloor = { behaviour = \"law\", preset = \"li1997-sio2\", kk = 1.0 }\n";
+    let table = SceneInput::Table { table: toml::from_str(unknown).unwrap(), name: "scene".into(), dir: dir.clone() };
+    let error = room_scene(&table).err().unwrap();
+    assert!(error.starts_with("scene: `walls.floor.kk`: unknown field `kk`"), "{error}");
+    let furnished = "[[furnishings]]\nname = \"a\"\nlow = [0.0, 0.0, 0.0]\nhigh = [1.0, 1.0, 1.0]\n\
+                     [[furnishings]]\nname = \"b\"\nlow = [0.0, 0.0]\nhigh = [1.0, 1.0, 1.0]\n";
+    let table = SceneInput::Table { table: toml::from_str(furnished).unwrap(), name: "scene".into(), dir: dir.clone() };
+    let error = room_scene(&table).err().unwrap();
+    assert!(error.starts_with("scene: `furnishings[1].low`: invalid length 2"), "{error}");
     let path = scene_file("text", ROOM);
     let from_file = room_scene(&SceneInput::Path(path.clone())).unwrap();
     std::fs::remove_file(&path).unwrap();
