@@ -8,6 +8,11 @@ The law on numpy arrays, in place and without copies::
     outcome = law.apply(vx, vy, vz, normal=(0, 0, 1))   # vz is now the rebound velocity
     outcome.tolist() == [depo.REBOUND, depo.CAPTURED, depo.SKIPPED]
 
+The room and channel studies, as the `depo` command runs them::
+
+    result = depo.room({"particles": {"diameters": [1e-6, 5e-6], "count": 200}}, seed=1)
+    result.beta_per_hour, result.to_dict()      # the dict is `depo room --format json`'s
+
 Everything is in SI units (m/s, rad/s, m, J/kg). The outcome codes and capture modes are the C
 library's (depo.h). See docs/python.md in the repository.
 """
@@ -29,9 +34,16 @@ from depo._depo import (
     presets,
     set_num_threads,
 )
+from depo._studies import ChannelResult, ChannelRun, DecayCurve, RoomResult, channel, room
 
 __all__ = [
     "CAPTURE_DEPOSIT",
+    "ChannelResult",
+    "ChannelRun",
+    "DecayCurve",
+    "RoomResult",
+    "channel",
+    "room",
     "CAPTURE_KEEP_ON_WALL",
     "CAPTURED",
     "INVALID",

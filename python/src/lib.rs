@@ -4,8 +4,9 @@
 //! binds the Rust crates directly, never through the C ABI: `law` the wall law on numpy
 //! arrays (`WallLaw`, `Tally`), `arrays` how numpy arrays are borrowed (contiguous ones without
 //! a copy, strided views gathered and scattered back), `jobs` the `depo` command's other jobs
-//! (`fit`, `capture_velocity`, `presets`), `threads` where large batches run, `bench` the Rust
-//! side of the Python benchmark.
+//! (`fit`, `capture_velocity`, `presets`), `studies` the room and channel studies (watched
+//! for Ctrl-C), `threads` where large batches and studies run, `bench` the Rust side of the
+//! Python benchmark.
 //!
 //! Conventions: SI units throughout; a bad value is a `ValueError` whose message is the one-line
 //! message of the C ABI or the command, naming the parameter; a wrong array type or dtype is a
@@ -18,6 +19,7 @@ mod arrays;
 mod bench;
 mod jobs;
 mod law;
+mod studies;
 mod threads;
 
 /// The module `depo._depo`.
@@ -38,6 +40,8 @@ fn _depo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(jobs::fit, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::capture_velocity, m)?)?;
     m.add_function(wrap_pyfunction!(threads::set_num_threads, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::_room, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::_channel, m)?)?;
     m.add_function(wrap_pyfunction!(bench::_bench_apply, m)?)?;
     Ok(())
 }

@@ -29,6 +29,10 @@ static THREADS: RwLock<Threads> = RwLock::new(Threads::Global);
 /// - 2 to MAX_THREADS (1024): a pool of that many threads of depo's own, started by this call
 ///   and ended when a later call replaces it.
 ///
+/// A study (depo.room, depo.channel) runs its particles likewise: on one thread per core (0),
+/// on a single thread (1), or on the pool of n (it always runs beside the calling thread, which
+/// watches for Ctrl-C).
+///
 /// The setting is process-wide. Results are identical, bit for bit, for every setting. A value
 /// above MAX_THREADS or below 0 is a ValueError and changes nothing.
 #[pyfunction]
@@ -70,5 +74,26 @@ pub fn run_batch<R: Send>(n: usize, work: impl FnOnce(bool) -> R + Send) -> R {
     match pool {
         Some(pool) => pool.install(|| work(true)),
         None => work(true),
+    }
+}
+
+/// Runs a study (`work`, on the thread that calls this) where [`set_num_threads`] says: its
+/// particles on rayon's global pool (0), on one thread (1: a pool of one, started for the study
+/// and ended with it), or on depo's own pool (2 and more). Results are the same bits for every
+/// setting.
+pub fn run_study<R: Send>(work: impl FnOnce() -> R + Send) -> R {
+    let pool = match &*THREADS.read().unwrap_or_else(|e| e.into_inner()) {
+        Threads::Global => None,
+        Threads::Caller => rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .thread_name(|_| "depo-study-1".into())
+            .build()
+            .ok()
+            .map(Arc::new),
+        Threads::Pool(pool) => Some(Arc::clone(pool)),
+    };
+    match pool {
+        Some(pool) => pool.install(work),
+        None => work(),
     }
 }
