@@ -3,7 +3,8 @@
 Every quantity is in SI units: m/s, rad/s, m, kg/m^3, Pa, J/m^2, J/kg.
 """
 
-from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
+import os
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -221,7 +222,29 @@ def capture_velocity(
 def set_num_threads(n: int) -> None:
     """How many threads depo runs a large batch on (PARALLEL_MIN particles or more): 0 (the
     default) one per core, 1 the calling thread only, 2 to MAX_THREADS a pool of depo's own.
-    Process-wide; results are identical, bit for bit, for every setting."""
+    A study (depo.room, depo.channel) runs its particles likewise: one thread per core (0), a
+    single thread (1), or the pool of n. Process-wide; results are identical, bit for bit, for
+    every setting."""
+
+def _room(
+    scene: Union[None, str, "os.PathLike[str]", Dict[str, Any]] = None,
+    seed: Optional[int] = None,
+    report: Optional[Callable[[str, int, int], None]] = None,
+) -> Tuple[str, List[str], float]:
+    """depo.room's engine: runs the room study of `scene` with the GIL released, watching for
+    Ctrl-C, and returns (the JSON `depo room --format json` prints, the scene reader's
+    warnings, the runs' seconds). `report(what, done, total)` is called on the calling thread
+    as sizes complete. Use depo.room."""
+
+def _channel(
+    scene: Union[None, str, "os.PathLike[str]", Dict[str, Any]] = None,
+    seed: Optional[int] = None,
+    tau_plus: Optional[Sequence[float]] = None,
+    near_wall: Optional[str] = None,
+    report: Optional[Callable[[str, int, int], None]] = None,
+) -> List[Tuple[str, str, float]]:
+    """depo.channel's engine: one (name, JSON of `depo channel --format json`, seconds) per
+    run. Use depo.channel."""
 
 def _bench_apply(
     law: WallLaw,

@@ -8,9 +8,10 @@ is installed, DataFrames.
 
 import copy
 import json
+import os
 import sys
 import warnings
-from typing import NamedTuple
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Union
 
 import numpy as np
 
@@ -72,7 +73,7 @@ class RoomResult:
         """A key of the JSON's top level (``size_m``, ``air_changes_per_hour``, ...)."""
         return self._report[key]
 
-    def to_dict(self):
+    def to_dict(self) -> Dict[str, Any]:
         """What ``depo room --format json`` prints for the same scene and seed, as a new dict."""
         return copy.deepcopy(self._report)
 
@@ -142,7 +143,7 @@ class ChannelRun:
     def __getitem__(self, key):
         return self._report[key]
 
-    def to_dict(self):
+    def to_dict(self) -> Dict[str, Any]:
         """What ``depo channel --format json`` prints for this run, as a new dict."""
         return copy.deepcopy(self._report)
 
@@ -178,7 +179,7 @@ class ChannelResult:
     def __init__(self, runs):
         self.runs = runs
 
-    def to_dict(self):
+    def to_dict(self) -> List[Dict[str, Any]]:
         """What ``depo channel --format json`` prints, one dict per run, as a list."""
         return [run.to_dict() for run in self.runs]
 
@@ -228,7 +229,14 @@ def _reporter(progress):
     return report, close
 
 
-def room(scene=None, *, seed=None, progress=False):
+Scene = Union[None, str, "os.PathLike[str]", Dict[str, Any]]
+"""A scene: None (the built-in one), a scene file's path, or a dict of its keys."""
+
+Progress = Union[bool, Callable[[str, int, int], None]]
+"""False, True (a bar) or a callable progress(what, done, total)."""
+
+
+def room(scene: Scene = None, *, seed: Optional[int] = None, progress: Progress = False) -> "RoomResult":
     """Runs a room study: deposition onto the floor, ceiling, walls (and furnishings) of a
     room per particle size, beside Lai & Nazaroff (2000), as ``depo room`` does.
 
@@ -272,7 +280,14 @@ def room(scene=None, *, seed=None, progress=False):
     return RoomResult(json.loads(text), seconds, reader_warnings)
 
 
-def channel(scene=None, *, seed=None, tau_plus=None, near_wall=None, progress=False):
+def channel(
+    scene: Scene = None,
+    *,
+    seed: Optional[int] = None,
+    tau_plus: Optional[Sequence[float]] = None,
+    near_wall: Optional[str] = None,
+    progress: Progress = False,
+) -> "ChannelResult":
     """Runs a channel study: the deposition velocity V+ against the particle relaxation time
     tau+ in a turbulent channel, beside Wood (1981) and Papavergos & Hedley (1984), as
     ``depo channel`` does.

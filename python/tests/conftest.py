@@ -31,6 +31,21 @@ def _built(variable, name):
     pytest.skip(f"{name} is not built (cargo build -p depo-capi / --bin depo), and {variable} is not set")
 
 
+def optional(module, package):
+    """Imports an optional `module` (of pip's `package`) for a test, which is skipped, with the
+    reason shown, where it is not installed; but fails where DEPO_PY_EXTRAS (what test.sh
+    installs, and CI sets) names the package, so that CI cannot skip it."""
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ImportError:
+        wanted = os.environ.get("DEPO_PY_EXTRAS", "")
+        if package in wanted:
+            pytest.fail(f"{module} is not importable, though DEPO_PY_EXTRAS={wanted!r} installs {package}")
+        pytest.skip(f"{package} is not installed (optional; DEPO_PY_EXTRAS=\"{package}\" python/test.sh installs it)")
+
+
 def pytest_report_header(config):
     import depo
 

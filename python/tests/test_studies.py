@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import depo
+from conftest import optional
 
 ROOM = {
     "room": {"size": [2.0, 2.0, 2.0]},
@@ -96,7 +97,7 @@ def test_room_result_as_numpy_arrays():
 
 
 def test_room_to_pandas():
-    pd = pytest.importorskip("pandas", reason="pandas is not installed (optional)")
+    pd = optional("pandas", "pandas")
     r = depo.room(ROOM)
     df = r.to_pandas()
     assert isinstance(df, pd.DataFrame)
