@@ -256,6 +256,29 @@ def room(scene: Scene = None, *, seed: Optional[int] = None, progress: Progress 
             a line on stderr); or a callable ``progress(what, done, total)`` called on this
             thread as sizes complete.
 
+    The scene's sections and main keys (every one optional; SI units):
+
+    - ``room``: ``size`` [Lx, Ly, height] (m; z is up).
+    - ``air``: ``temperature`` (K), ``pressure`` (Pa), ``density`` (kg/m^3), ``viscosity`` (Pa s).
+    - ``flow``: ``friction_velocity`` u* at the surfaces (m/s), ``core_rms`` (m/s) or
+      ``core_tke`` (m^2/s^2) of the well-mixed core, ``core_time`` (s), ``blend_length`` (m).
+    - ``particles``: ``diameters`` (m, one run each), ``count`` per diameter,
+      ``target_error`` (relative standard error to run more particles for; 0: just count),
+      ``max_count``, ``density`` (kg/m^3); or a size distribution: ``modes`` (lognormal, each
+      ``count_median`` or ``mass_median`` (m), ``geometric_sd``, a share or a concentration
+      (1/m^3 or kg/m^3)), ``bins``, ``bin_range`` (m), or ``size_bins`` (a CSV file).
+    - ``walls``: per surface (``all``, ``floor``, ``ceiling``, ``x0``, ``x1``, ``y0``, ``y1``)
+      ``{"behaviour": "sink" | "reflect" | "law", "preset": ID}`` or a law's own ``k``,
+      ``kappa``, ``vc`` (m/s), ``p``, ``q``, ``mu`` (depo.fit's scene_entry).
+    - ``furnishings``: a list of boxes ``{"name", "low": [x, y, z], "high": [x, y, z]}`` (m).
+    - ``openings``: a list of doors, windows and vents (examples/room.toml).
+    - ``ventilation``: ``air_changes_per_hour`` (1/h), ``penetration`` (0-1),
+      ``supply_share`` (0-1), ``supply_filter`` (efficiency), ``recirculation_per_hour``
+      (1/h), ``recirculation_filter``.
+    - ``run``: ``dt`` (s), ``duration`` (s), ``transient`` (share of the run left out of the
+      averages), ``seed``, ``brownian``, ``gravity`` (m/s^2), ``drag``, ``scheme``,
+      ``near_wall``, ``excursions``.
+
     Returns:
         A RoomResult: ``to_dict()`` is what ``depo room --format json`` prints for the same
         scene and seed; numpy arrays ``diameters_um``, ``beta_per_hour`` (1/h), ``decay``
