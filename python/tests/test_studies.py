@@ -79,6 +79,22 @@ def test_channel_to_dict_is_the_command_s_json(depo_bin, tmp_path):
     assert np.all(run.v_plus_error >= 0)
 
 
+def test_channel_near_wall_all_runs_both_models(depo_bin, tmp_path):
+    path = tmp_path / "channel.toml"
+    path.write_text(CHANNEL_TOML)
+    text = cli_json(depo_bin, "channel", path, "--tau-plus", "30", "--near-wall", "all")
+    # The command prints one JSON document per run, one after the other.
+    decoder, expected, at = json.JSONDecoder(), [], 0
+    while at < len(text.strip()):
+        doc, at = decoder.raw_decode(text, at)
+        expected.append(doc)
+        while at < len(text) and text[at].isspace():
+            at += 1
+    result = depo.channel(path, tau_plus=30, near_wall="all")
+    assert [r.name for r in result.runs] == ["depo, resolved", "depo, wall function"]
+    assert result.to_dict() == expected
+
+
 def test_room_result_as_numpy_arrays():
     r = depo.room(ROOM)
     d = r.to_dict()
