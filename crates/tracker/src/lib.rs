@@ -109,5 +109,5 @@ pub use geometry::{Geometry, Orientation, Wall};
 pub use openings::{Opening, OpeningKind};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Cancel, Estimate, Run};
 pub use scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
-pub use tracking::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS};
+pub use tracking::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS, NEAR_FLOOR_SHARE};
 pub use wall_function::{Correlation, WallFunction};

@@ -11,7 +11,7 @@ use crate::model::geometry::{Geometry, Orientation};
 use crate::model::scene::{Injection, Scene, Scheme, SizeDistribution};
 use crate::physics::correlations::LaiNazaroff;
 use crate::studies::filtration::Filtration;
-use crate::studies::steady::SteadyState;
+use crate::studies::steady::{near_floor, near_floor_volume, Source, SteadyState};
 use crate::tracking::WallTally;
 
 use crate::studies::study::*;
@@ -55,6 +55,10 @@ pub struct RoomStudy {
     /// adds its removal `eta_r(d) a_r` to each size's exhaust, and the indoor/outdoor ratio
     /// takes both filters. The default has neither.
     pub filtration: Filtration,
+    /// Where the continuous source of the steady state ([`RoomPoint::steady`]) enters;
+    /// `None` (the default): spread over the room, as infiltration where the room is
+    /// ventilated (with its indoor/outdoor ratio) and as an indoor source where it is not.
+    pub source: Option<Source>,
 }
 
 impl Default for RoomStudy {
@@ -80,6 +84,7 @@ impl Default for RoomStudy {
             excursions: true,
             penetration: 1.0,
             filtration: Filtration::default(),
+            source: None,
         }
     }
 }
@@ -171,12 +176,19 @@ pub struct RoomPoint {
     /// When half and when nine tenths of the released particles had deposited, s; `None`
     /// where the run ended first.
     pub deposited_by: [Option<f64>; 2],
-    /// The steady state under a continuous source of this size ([`crate::steady`]); `None`
-    /// where nothing removes the particles.
+    /// The steady state under a continuous source of this size entering where
+    /// [`RoomStudy::source`] says ([`crate::steady`]); `None` where nothing removes the
+    /// particles.
     pub steady: Option<SteadyState>,
-    /// With ventilation, the steady indoor/outdoor ratio from it: the entering outdoor
+    /// For a source of outdoor air (infiltration, a supply opening, or the default source in
+    /// a ventilated room), the steady indoor/outdoor ratio from it: the entering outdoor
     /// particles' rate times their mean residence time.
     pub steady_indoor_outdoor: Option<Estimate>,
+    /// The steady near-floor concentration over the room's mean under a source spread over
+    /// the room ([`SteadyState::near_floor`]), whatever [`RoomStudy::source`]: above
+    /// [`NOT_WELL_MIXED`](crate::steady::NOT_WELL_MIXED) the room is not well mixed for this
+    /// size. `None` where the particles had no time in the air.
+    pub near_floor: Option<Estimate>,
 }
 
 /// The time by which `share` of `records` had deposited, s; `None` if they never did.
@@ -298,6 +310,29 @@ impl RoomStudy {
         Ok(result)
     }
 
+    /// Whether the steady state's source brings outdoor particles in (its indoor/outdoor ratio
+    /// exists): infiltration and a supply opening do, an indoor source does not, and the
+    /// default does where the room is ventilated. An error names `source.enters` where
+    /// infiltration has no ventilation, or a supply no supply opening.
+    fn source_is_outdoor(&self) -> Result<bool, SceneError> {
+        let a = self.scene.exchange_rate();
+        match self.source {
+            None => Ok(a > 0.0),
+            Some(Source::Indoor(_)) => Ok(false),
+            Some(Source::Infiltration) if a > 0.0 => Ok(true),
+            Some(Source::Infiltration) => Err(SceneError::new(
+                "source.enters",
+                a,
+                "is infiltration, which needs ventilation: an air-exchange rate or openings",
+            )),
+            Some(Source::Supply(k)) => {
+                let size = self.scene.geometry.size();
+                let probe = Injection::new(1, SizeDistribution::Monodisperse { diameter: 1e-6 }, self.density);
+                Source::Supply(k).injection(probe, size, &self.scene.openings).map(|_| true)
+            }
+        }
+    }
+
     /// Runs every size; `progress` is told after each.
     pub fn run(&self, mut progress: impl FnMut(usize)) -> Result<Vec<RoomPoint>, SceneError> {
         if !(0.0..=1.0).contains(&self.penetration) {
@@ -316,6 +351,8 @@ impl RoomStudy {
         let u_star = self.scene.flow.friction_velocity().unwrap_or(0.0);
         let g = self.scene.gravity.iter().map(|g| g * g).sum::<f64>().sqrt();
         let size = self.scene.geometry.size();
+        let outdoor = self.source_is_outdoor()?;
+        let floor_volume = near_floor_volume(size, &self.scene.furnishings);
         let mut points = Vec::new();
         for (i, &d) in self.diameters.iter().enumerate() {
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
@@ -403,9 +440,34 @@ impl RoomStudy {
                 late(&furnished),
                 scene.exchange_rate(),
             ];
-            let steady = SteadyState::from_release(&result, lambda);
-            let steady_indoor_outdoor = steady.filter(|_| a > 0.0).map(|s| {
-                let q = f.entering(d, a, self.penetration);
+            let spread = SteadyState::from_release(&result, lambda, floor_volume);
+            // A source elsewhere than over the whole room: its own release, tracked plainly.
+            let at_source = match self.source {
+                Some(source) => source.injection(
+                    Injection { count: result.records.len(), ..injection },
+                    size,
+                    &self.scene.openings,
+                )?,
+                None => None,
+            };
+            let steady = match at_source {
+                Some(placed) => {
+                    let mut from_source = plain.clone();
+                    from_source.average_from = 0.0;
+                    let run = run(&from_source, &placed).map_err(for_diameters)?;
+                    SteadyState::from_release(&run, lambda, floor_volume)
+                }
+                None => spread,
+            };
+            // The outdoor particles entering per second per outdoor concentration and unit volume.
+            let entering = match self.source {
+                Some(Source::Supply(k)) => {
+                    (1.0 - f.supply_filter.at(d)) * self.scene.openings[k].flow / self.scene.free_volume()
+                }
+                _ => f.entering(d, a, self.penetration),
+            };
+            let steady_indoor_outdoor = steady.filter(|_| outdoor).map(|s| {
+                let q = entering;
                 Estimate {
                     value: q * s.residence.value,
                     error: q * s.residence.error,
@@ -481,6 +543,7 @@ impl RoomStudy {
                 deposited_by: [0.5, 0.9].map(|share| deposited_by(&result.records, share)),
                 steady,
                 steady_indoor_outdoor,
+                near_floor: Some(near_floor(&result, floor_volume)).filter(|m| m.value.is_finite()),
             });
             progress(i + 1);
         }

@@ -21,9 +21,49 @@
 //! `lambda_s / (beta + a)`, `lambda_s = v_d,s A_s / V`; that part is reported
 //! ([`SteadyState::beyond_run`]), the rest is the particles' own history. The standard errors
 //! are the delta method's over the independent particles.
+//!
+//! ## Where the source enters
+//! The release the steady state is read from is placed where the source emits
+//! ([`Source`]): uniformly over the room (an indoor source spread over it, or outdoor air
+//! infiltrating through the envelope, mixed in at the exchange rate), within a region of the
+//! room (an indoor source there), or at a supply opening (outdoor air carried in by the
+//! supply). Each particle's time near the floor ([`Record::near_floor`](crate::Record::near_floor),
+//! the lowest [`NEAR_FLOOR_SHARE`] of the height) gives the steady concentration there over the
+//! room's mean ([`SteadyState::near_floor`]): 1 in a room well mixed for that size, above 1
+//! where particles settle faster than the room's turbulence lifts them
+//! ([`NOT_WELL_MIXED`]), and where a source sits high (a supply at the ceiling) or low (a
+//! source at the floor) the profiles differ.
 
 use crate::estimation::run::{Estimate, Run};
-use crate::tracking::Fate;
+use crate::tracking::{Fate, NEAR_FLOOR_SHARE};
+
+/// Where a continuous source enters a room (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Source {
+    /// Emitted indoors: uniformly over the box with corners `(low, high)` (m), or over the
+    /// whole room where `None`. Its steady concentration is per particle emitted a second;
+    /// it has no indoor/outdoor ratio.
+    Indoor(Option<([f64; 3], [f64; 3])>),
+    /// Outdoor air leaking in through the envelope, mixed over the whole room: particles enter
+    /// at the rate the ventilation gives ([`Filtration::entering`](crate::studies::filtration::Filtration::entering),
+    /// `P a` per outdoor concentration without filters), uniformly. Needs ventilation.
+    Infiltration,
+    /// Outdoor air brought in by the supply opening with this index in
+    /// [`Scene::openings`](crate::Scene::openings), through the supply filter: the
+    /// particles enter just inside the opening ([`SUPPLY_DEPTH`]) at `(1 - eta_s) Q` per
+    /// outdoor concentration, `Q` the opening's flow.
+    Supply(usize),
+}
+
+/// How far into the room (m) from a supply opening's face a [`Source::Supply`] places its
+/// particles: where the opening's flow carries them on.
+pub const SUPPLY_DEPTH: f64 = 0.01;
+
+/// A size whose steady near-floor concentration over the room's mean
+/// ([`SteadyState::near_floor`], under a source spread over the room) exceeds this is not
+/// well mixed in the room: its deposition velocities over the room's mean concentration are
+/// not a well-mixed room's.
+pub const NOT_WELL_MIXED: f64 = 1.2;
 
 /// The steady state under a continuous source of one size (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,6 +78,11 @@ pub struct SteadyState {
     pub deposition_velocity: [Estimate; 3],
     /// The share of `residence` that comes from beyond the run's end (the late rates').
     pub beyond_run: f64,
+    /// The steady concentration in the lowest [`NEAR_FLOOR_SHARE`] of the room's height over
+    /// the room's mean, from the particles' own time in the air (the part beyond the run taken
+    /// as mixed as that): `(sum L_i / V_floor) / (sum T_i / V)`, `L_i` a particle's time near the
+    /// floor, `T_i` in the air, with the delta method's error.
+    pub near_floor: Estimate,
 }
 
 /// Which of the five fates of [`SteadyState::fates`] surface `s` is: 0-2 by orientation for
@@ -57,10 +102,11 @@ fn fate_of(run: &Run, s: usize) -> usize {
 impl SteadyState {
     /// From `run`, a release followed from `t = 0` for `duration` (s), with its late rates:
     /// `lambda` the rate (1/s) at which an airborne particle ends in each of the five fates
-    /// (deposition per orientation and on furnishings, exhaust). `None` where nothing removes
-    /// particles (every rate zero): the steady state is never reached.
+    /// (deposition per orientation and on furnishings, exhaust); `floor_volume` the air's
+    /// volume in the lowest [`NEAR_FLOOR_SHARE`] of the height (m^3). `None` where nothing
+    /// removes particles (every rate zero): the steady state is never reached.
     #[must_use]
-    pub fn from_release(run: &Run, lambda: [f64; 5]) -> Option<Self> {
+    pub fn from_release(run: &Run, lambda: [f64; 5], floor_volume: f64) -> Option<Self> {
         let total: f64 = lambda.iter().sum();
         if !(total > 0.0 && total.is_finite()) || run.records.is_empty() {
             return None;
@@ -126,6 +172,84 @@ impl SteadyState {
                 },
             }
         });
-        Some(Self { residence, fates, deposition_velocity, beyond_run: beyond })
+        let near_floor = near_floor(run, floor_volume);
+        Some(Self { residence, fates, deposition_velocity, beyond_run: beyond, near_floor })
+    }
+}
+
+/// The steady near-floor concentration over the room's mean under a source that emits as
+/// `run`'s release was placed ([`SteadyState::near_floor`]), from the particles' own time in
+/// the air; `floor_volume` as [`SteadyState::from_release`] takes it. NaN without time in the
+/// air, and with fewer than two particles.
+#[must_use]
+pub fn near_floor(run: &Run, floor_volume: f64) -> Estimate {
+    let n = run.records.len() as f64;
+    let (low, all): (f64, f64) = run.records.iter().fold((0.0, 0.0), |(l, t), r| (l + r.near_floor, t + r.time));
+    let events = run.records.iter().filter(|r| r.near_floor > 0.0).count();
+    if !(all > 0.0 && floor_volume > 0.0) || n < 2.0 {
+        return Estimate { value: f64::NAN, error: f64::NAN, events, upper_bound: f64::NAN };
+    }
+    let r = low / all;
+    let spread: f64 = run.records.iter().map(|x| (x.near_floor - r * x.time).powi(2)).sum::<f64>() / (n - 1.0);
+    let scale = run.volume / floor_volume;
+    let error = (spread * n).sqrt() / all * scale;
+    Estimate { value: r * scale, error, events, upper_bound: r * scale + 2.0 * error }
+}
+
+/// The air's volume (m^3) in the lowest [`NEAR_FLOOR_SHARE`] of a room `size` (m) with
+/// `furnishings`.
+#[must_use]
+pub fn near_floor_volume(size: [f64; 3], furnishings: &[crate::Furnishing]) -> f64 {
+    let high = [size[0], size[1], NEAR_FLOOR_SHARE * size[2]];
+    high.iter().product::<f64>() - furnishings.iter().map(|f| f.shared_volume([0.0; 3], high)).sum::<f64>()
+}
+
+impl Source {
+    /// The release to read the steady state from: `injection` placed where the source
+    /// enters in a room of `size` (m) with `openings`; `None` for a source spread over the
+    /// whole room (the study's own release). An error names `source.region` or
+    /// `source.opening`.
+    pub fn injection(
+        &self,
+        injection: crate::Injection,
+        size: [f64; 3],
+        openings: &[crate::Opening],
+    ) -> Result<Option<crate::Injection>, crate::SceneError> {
+        use crate::SceneError;
+        match *self {
+            Source::Indoor(None) | Source::Infiltration => Ok(None),
+            Source::Indoor(Some((low, high))) => {
+                for a in 0..3 {
+                    if !(low[a].is_finite()
+                        && high[a].is_finite()
+                        && 0.0 <= low[a]
+                        && low[a] < high[a]
+                        && high[a] <= size[a])
+                    {
+                        return Err(SceneError::new(
+                            "source.region",
+                            if low[a] < high[a] { high[a] } else { low[a] },
+                            "must be a box inside the room, its low corner below its high one on every axis",
+                        ));
+                    }
+                }
+                Ok(Some(injection.within(low, high)))
+            }
+            Source::Supply(k) => {
+                let Some(o) = openings.get(k).filter(|o| o.kind == crate::OpeningKind::Supply) else {
+                    return Err(SceneError::new("source.opening", k as f64, "must be the index of a supply opening"));
+                };
+                let (axis, upper) = crate::model::openings::wall_axis(o.wall);
+                let axes = crate::geometry::in_plane_axes(axis);
+                let bounds = o.bounds();
+                let (mut low, mut high) = ([0.0; 3], [0.0; 3]);
+                for i in 0..2 {
+                    (low[axes[i]], high[axes[i]]) = (bounds[i][0], bounds[i][1]);
+                }
+                let depth = SUPPLY_DEPTH.min(0.5 * size[axis]);
+                (low[axis], high[axis]) = if upper { (size[axis] - depth, size[axis]) } else { (0.0, depth) };
+                Ok(Some(injection.within(low, high)))
+            }
+        }
     }
 }

@@ -91,7 +91,9 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
     let mut end = [0usize; WIDTH];
     let (mut lo, mut hi) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
 
-    let record = |lane: &Lane, fate: Fate, time: f64, at: [f64; 3], steps: u64| Record {
+    // Each lane's airborne time in the near-floor layer ([`Record::near_floor`]).
+    let mut low = [0.0; WIDTH];
+    let record = |lane: &Lane, fate: Fate, time: f64, at: [f64; 3], steps: u64, low: f64| Record {
         fate,
         time,
         start: lane.start,
@@ -99,6 +101,7 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
         diameter: lane.body.aero.diameter,
         mass: lane.body.aero.mass,
         steps,
+        near_floor: low,
     };
 
     // Some lane is empty (and may take the next particle).
@@ -115,7 +118,7 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
                     (x[a][l], v[a][l], zeta[a][l], settling[a][l]) = (x0[a], v0[a], z0[a], body.settling[a]);
                     (lo[a][l], hi[a][l]) = free_bounds(p, a, body.contact);
                 }
-                (decay[l], relax[l], radius[l], n[l]) = (body.decay, body.relax, body.contact, 0);
+                (decay[l], relax[l], radius[l], n[l], low[l]) = (body.decay, body.relax, body.contact, 0, 0.0);
                 for (k, b) in body.brownian.into_iter().enumerate() {
                     brownian[k][l] = b;
                 }
@@ -136,7 +139,8 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
                     v_inf[a][l] = field.uniform[a] + settling[a][l];
                 }
             }
-            let taken = fly_freely::<AVX2>(&mut x, &mut v, FreeLanes { v_inf, decay, relax, lo, hi, dt }, left);
+            let free = FreeLanes { v_inf, decay, relax, lo, hi, dt, floor: p.near_floor };
+            let taken = fly_freely::<AVX2>(&mut x, &mut v, &mut low, free, left);
             for n in &mut n {
                 *n += taken;
             }
@@ -169,6 +173,9 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
                 for n in &mut n {
                     *n += 1;
                 }
+                for l in 0..WIDTH {
+                    low[l] += if x[2][l] < p.near_floor { dt } else { 0.0 };
+                }
                 continue;
             }
         }
@@ -191,8 +198,9 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
                     (x[a][l], v[a][l]) = (xw[a], vw[a]);
                 }
                 if !(xw.is_finite() && vw.is_finite()) {
-                    Some(record(lane, Fate::Escaped, t0 + dt, xw.to_array(), taken as u64 + 1))
+                    Some(record(lane, Fate::Escaped, t0 + dt, xw.to_array(), taken as u64 + 1, low[l]))
                 } else {
+                    low[l] += if xw.z < p.near_floor { dt } else { 0.0 };
                     None
                 }
             } else {
@@ -214,17 +222,18 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
                         for a in 0..3 {
                             (x[a][l], v[a][l], zeta[a][l]) = (s.x[a], s.v[a], s.zeta[a]);
                         }
+                        low[l] += if s.x.z < p.near_floor { dt } else { 0.0 };
                         None
                     }
                     AfterContacts::Left(fate, t, at) => {
-                        Some(record(lane, fate, t0 + t, at.to_array(), taken as u64 + 1))
+                        Some(record(lane, fate, t0 + t, at.to_array(), taken as u64 + 1, low[l]))
                     }
                 }
             };
             let done = done.or_else(|| {
                 (n[l] == end[l]).then(|| {
                     let fate = if end[l] < p.steps { Fate::Exhausted } else { Fate::Airborne };
-                    record(lane, fate, end[l] as f64 * dt, [x[0][l], x[1][l], x[2][l]], end[l] as u64)
+                    record(lane, fate, end[l] as f64 * dt, [x[0][l], x[1][l], x[2][l]], end[l] as u64, low[l])
                 })
             });
             if let Some(rec) = done {
@@ -457,6 +466,8 @@ struct FreeLanes {
     lo: [[f64; WIDTH]; 3],
     hi: [[f64; WIDTH]; 3],
     dt: f64,
+    /// The top of the near-floor layer, m ([`Prepared::near_floor`]).
+    floor: f64,
 }
 
 /// The coordinates along `axis` between which a sphere of radius `r` flies on without a
@@ -482,6 +493,7 @@ fn free_bounds(p: &Prepared<'_>, axis: usize, r: f64) -> (f64, f64) {
 fn fly_freely<const AVX2: bool>(
     x: &mut [[f64; WIDTH]; 3],
     v: &mut [[f64; WIDTH]; 3],
+    low: &mut [f64; WIDTH],
     c: FreeLanes,
     limit: usize,
 ) -> usize {
@@ -499,6 +511,9 @@ fn fly_freely<const AVX2: bool>(
             break;
         }
         (xs, vs) = (x1, v1);
+        for l in 0..WIDTH {
+            low[l] += if xs[2][l] < c.floor { c.dt } else { 0.0 };
+        }
         taken += 1;
     }
     (*x, *v) = (xs, vs);
