@@ -56,7 +56,12 @@ enum Command {
     /// share of their weight given up at their longest duration, a bound on what that may miss.
     /// That duration is 16000 wall time units, doubled while a pilot run or the size's run gave
     /// up more than 2.5 % of the weight, up to 8 times that. L&N < 1e-30: Lai & Nazaroff give
-    /// below 1e-30 m/s (the ceiling for coarse particles), no deposition.
+    /// below 1e-30 m/s (the ceiling for coarse particles), no deposition. "near floor": under
+    /// a steady source spread over the room, the concentration in the lowest tenth of its
+    /// height over the room's mean; marked ~ above 1.2, where the room is not well mixed for
+    /// the size and its v_d and beta are not a well-mixed room's. The third table is the steady
+    /// state under a continuous source entering where a scene's [source] says (indoor,
+    /// infiltration or a supply opening; examples/room.toml).
     Room(room::RoomArgs),
     /// V+ against tau+ in a turbulent channel, beside Wood (1981).
     ///

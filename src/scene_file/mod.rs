@@ -6,9 +6,9 @@
 //! [`room_scene`] and [`channel_scene`] read it into the tracker's study. Every error is one
 //! line naming the file (or what stands in for it), the line and the key at fault, as the
 //! `depo` command prints it. The reader is split by the file's sections: `run` (`[run]`),
-//! `air`, `walls`, `furnishings`, `openings`, `ventilation`, `particles` (the diameters or
-//! a size distribution), and the two kinds of scene, `room` and `channel`, which put them
-//! together.
+//! `air`, `walls`, `furnishings`, `openings`, `ventilation`, `source` (where the steady
+//! state's source enters), `particles` (the diameters or a size distribution), and the two
+//! kinds of scene, `room` and `channel`, which put them together.
 
 mod air;
 mod channel;
@@ -17,6 +17,7 @@ mod openings;
 mod particles;
 mod room;
 mod run;
+mod source;
 #[cfg(test)]
 mod tests;
 mod ventilation;

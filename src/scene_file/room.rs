@@ -14,6 +14,7 @@ use super::furnishings::{furnishings, FurnishingFile};
 use super::openings::{openings, OpeningFile};
 use super::particles::{distribution, RoomParticles};
 use super::run::{apply_run_choices, check_count, check_duration, check_transient, gravity, set_target_error, RunFile};
+use super::source::{apply_source, SourceFile};
 use super::ventilation::{apply_ventilation, VentilationFile};
 use super::walls::{apply_walls, WallsFile};
 use super::{parse, set, text_of, Error, SceneInput, SceneSource};
@@ -56,6 +57,8 @@ pub(super) struct RoomFile {
     pub(super) ventilation: VentilationFile,
     #[serde(default)]
     pub(super) run: RunFile,
+    #[serde(default)]
+    pub(super) source: SourceFile,
 }
 
 /// A room scene: its study, the size distribution it runs instead of the study's diameters,
@@ -138,6 +141,7 @@ pub(super) fn room_scene(input: &SceneInput) -> Result<RoomScene, Error> {
     set_target_error(&src, &mut study.target_error, file.particles.target_error)?;
     set(&mut study.density, file.particles.density);
     apply_ventilation(&src, &mut study, &file.ventilation)?;
+    apply_source(&src, &mut study, &file.source)?;
     check_count(&src, "particles.count", &["particles.count"], study.count)?;
     if study.target_error.is_some() {
         check_count(&src, "particles.max_count", &["particles.max_count"], study.max_count)?;

@@ -228,3 +228,70 @@ fn a_scene_from_text_or_a_table_reads_as_its_file() {
     let from_table = room_scene(&SceneInput::Table { table, name: "scene".into(), dir }).unwrap();
     assert!(from_table.study == from_file.study, "the table's study differs from the file's");
 }
+
+/// Two openings for the small test room: a supply in the ceiling (`openings[0]`) and an
+/// exhaust on the `x1` wall (`openings[1]`), 8 lines.
+const OPENINGS: &str = "[[openings]]\nkind = \"supply\"\nwall = \"ceiling\"\ncenter = [1.0, 1.0]\nsize = [0.2, 0.2]\n\
+                        flow_m3_per_hour = 10.0\n[[openings]]\nkind = \"exhaust\"\nwall = \"x1\"\ncenter = [1.0, 0.3]\n\
+                        size = [0.2, 0.2]\nflow_m3_per_hour = 10.0\n";
+
+/// `[source]` reads where the steady state's source enters, and its errors name the key the
+/// file wrote, at its line: a name it does not know, infiltration without ventilation, a supply
+/// without a supply opening or at an exhaust, a region outside the room or for another entry.
+#[test]
+fn the_source_s_entry_is_read_and_its_errors_name_the_key_written() {
+    use depo_tracker::steady::Source;
+    let read = |name: &str, lines: &str| {
+        let path = scene_file(name, &format!("{ROOM}{lines}"));
+        let scene = room_scene(&SceneInput::Path(path.clone()));
+        std::fs::remove_file(&path).unwrap();
+        scene.map(|s| s.study.source)
+    };
+    assert_eq!(read("src-none", "").unwrap(), None);
+    assert_eq!(
+        read("src-supply", &format!("{OPENINGS}[source]\nenters = \"supply\"\n")).unwrap(),
+        Some(Source::Supply(0))
+    );
+    assert_eq!(
+        read("src-region", "[source]\nenters = \"indoor\"\nregion = [[0.0, 0.0, 0.0], [2.0, 2.0, 0.2]]\n").unwrap(),
+        Some(Source::Indoor(Some(([0.0; 3], [2.0, 2.0, 0.2]))))
+    );
+    assert_eq!(
+        read("src-infiltration", "[ventilation]\nair_changes_per_hour = 1.0\n[source]\nenters = \"infiltration\"\n")
+            .unwrap(),
+        Some(Source::Infiltration)
+    );
+    assert_eq!(
+        room_error("src-name", "[source]\nenters = \"window\"\n"),
+        " line 9: `source.enters` = \"window\": expected \"indoor\" or \"infiltration\" or \"supply\""
+    );
+    assert_eq!(
+        room_error("src-closed", "[source]\nenters = \"infiltration\"\n"),
+        " line 9: `source.enters` = \"infiltration\" needs ventilation: `ventilation.air_changes_per_hour` or \
+         `[[openings]]`"
+    );
+    assert_eq!(
+        room_error("src-no-supply", "[source]\nenters = \"supply\"\n"),
+        " line 9: `source.enters` = \"supply\" needs a supply opening in `[[openings]]`"
+    );
+    assert_eq!(
+        room_error("src-exhaust", &format!("{OPENINGS}[source]\nenters = \"supply\"\nopening = 1\n")),
+        " line 22: `source.opening` = 1 is not a supply opening: `openings[1]` is an exhaust"
+    );
+    assert_eq!(
+        room_error("src-outside", "[source]\nenters = \"indoor\"\nregion = [[0.0, 0.0, 0.0], [3.0, 1.0, 1.0]]\n"),
+        " line 10: `source.region` = [[0, 0, 0], [3, 1, 1]] must be a box inside the room (2 x 2 x 2 m), its first \
+         corner below its second on every axis"
+    );
+    assert_eq!(
+        room_error(
+            "src-region-supply",
+            &format!("{OPENINGS}[source]\nenters = \"supply\"\nregion = [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]\n")
+        ),
+        " line 22: `source.region` places an indoor source: not with `source.enters` = \"supply\""
+    );
+    assert_eq!(
+        room_error("src-bare-region", "[source]\nregion = [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]\n"),
+        " line 9: `source.region` needs `source.enters` = \"indoor\""
+    );
+}

@@ -83,6 +83,18 @@ pub fn to_csv(r: &RoomResult) -> Result<String, Error> {
     if furnished {
         header.extend(["furnishings_share", "surface_to_volume_per_m"]);
     }
+    // Whether the room is well mixed for the size, and the steady state under the source.
+    header.extend([
+        "near_floor_over_mean",
+        "near_floor_error",
+        "well_mixed",
+        "steady_residence_h",
+        "steady_residence_error",
+        "steady_near_floor_over_mean",
+        "steady_near_floor_error",
+        "steady_indoor_outdoor",
+        "steady_indoor_outdoor_error",
+    ]);
     let surface_to_volume = study.scene.surface_to_volume();
     csv_text(
         &header,
@@ -143,6 +155,15 @@ pub fn to_csv(r: &RoomResult) -> Result<String, Error> {
             if let Some(share) = &release.furnishings {
                 row.extend([x(share.share), x(surface_to_volume)]);
             }
+            // An absent figure (no steady state; no indoor/outdoor ratio for an indoor source)
+            // is an empty cell.
+            let pair = |m: Option<(f64, f64)>| m.map_or([String::new(), String::new()], |(v, e)| [x(v), x(e)]);
+            let steady = r.steady.as_ref();
+            row.extend(pair(r.near_floor_over_mean.map(|m| (m.value, m.error))));
+            row.push(r.well_mixed.map_or(String::new(), |w| w.to_string()));
+            row.extend(pair(steady.map(|st| (st.residence_h.value, st.residence_h.error))));
+            row.extend(pair(steady.map(|st| (st.near_floor_over_mean.value, st.near_floor_over_mean.error))));
+            row.extend(pair(steady.and_then(|st| st.indoor_outdoor.as_ref()).map(|m| (m.value, m.error))));
             row
         }),
     )

@@ -1,6 +1,7 @@
 //! `depo room`'s figures, into a directory: deposition velocities and the loss rate beside Lai &
-//! Nazaroff, the indoor/outdoor ratio when ventilated, the decay curves (also as CSV), each
-//! size's deposition maps (CSV and SVG), and with a size distribution where its mass went.
+//! Nazaroff, the indoor/outdoor ratio when ventilated, the steady state under a continuous
+//! source, the decay curves (also as CSV), each size's deposition maps (CSV and SVG), and
+//! with a size distribution where its mass went.
 
 use std::path::Path;
 
@@ -187,6 +188,9 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
         )?;
         note(format!("figure: {}", indoor_outdoor.display()));
     }
+    if let Some(steady) = plot_steady(dir, study, rows)? {
+        note(format!("figure: {}", steady.display()));
+    }
     // The decay curves, a panel per size on shared axes (the sizes' curves, all near 1 where
     // deposition is slow, would hide each other on one chart): the airborne share with its
     // standard error, the fitted line over its window, and what ventilation alone would leave;
@@ -304,6 +308,77 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
         if first_seen(rows.iter().map(|r| r.density)).len() > 1 { "-DENSITYkgm3" } else { "" }
     ));
     Ok(())
+}
+
+/// The steady state under the study's continuous source, per size, into
+/// `room-steady.svg`: for outdoor air, `C_in/C_out` from the source's own release beside the
+/// well-mixed room's mass balance from the release study's `beta`; for an indoor source, the
+/// steady concentration per particle emitted a second beside the well-mixed room's
+/// `1 / (V (a + beta))`. Sizes the room does not mix well are named in the title. `None`, and
+/// no file, where no size has a steady figure above zero to draw.
+fn plot_steady(dir: &Path, study: &RoomStudy, rows: &[Row]) -> Result<Option<std::path::PathBuf>, Error> {
+    let path = dir.join("room-steady.svg");
+    let outdoor = rows.iter().any(|r| r.steady.as_ref().is_some_and(|s| s.indoor_outdoor.is_some()));
+    let volume = study.scene.free_volume();
+    let a = study.scene.exchange_rate() * 3600.0;
+    let mut series = Vec::new();
+    let mut steady_points = Vec::new();
+    for (k, rho) in first_seen(rows.iter().map(|r| r.density)).into_iter().enumerate() {
+        let of = density_label(rows, rho, ", ", " kg/m^3");
+        let own: Vec<&Row> = rows.iter().filter(|r| r.density == rho && r.steady.is_some()).collect();
+        let steady: Vec<(f64, f64, f64)> = own
+            .iter()
+            .filter_map(|r| {
+                let st = r.steady.as_ref()?;
+                if outdoor {
+                    st.indoor_outdoor.as_ref().map(|m| (r.diameter_um, m.value, m.error))
+                } else {
+                    let c = st.concentration_per_emission_s_per_m3;
+                    Some((r.diameter_um, c.value, c.error))
+                }
+            })
+            .collect();
+        steady_points.extend(steady.iter().map(|&(_, v, _)| v));
+        series.push(
+            Series::markers(
+                format!("steady state of the source{of} (depo, +- 1 s.e.)"),
+                steady.iter().map(|&(d, v, _)| (d, v)).collect(),
+            )
+            .with_errors(steady.iter().map(|&(.., e)| e).collect())
+            .color(2 * k),
+        );
+        let mixed: Vec<(f64, f64)> = own
+            .iter()
+            .filter_map(|r| {
+                let beta = r.beta_per_hour.value;
+                if outdoor {
+                    r.indoor_outdoor.as_ref().map(|m| (r.diameter_um, m.value))
+                } else {
+                    (a + beta > 0.0).then(|| (r.diameter_um, 3600.0 / (volume * (a + beta))))
+                }
+            })
+            .collect();
+        let name = if outdoor {
+            format!("well-mixed room, from the release's beta{of}")
+        } else {
+            format!("well-mixed room, 1 / (V (a + beta)) from the release's beta{of}")
+        };
+        series.push(Series::line(name, mixed).color(2 * k + 1));
+    }
+    let unmixed: Vec<String> =
+        rows.iter().filter(|r| r.well_mixed == Some(false)).map(|r| significant(r.diameter_um, 3)).collect();
+    let title = if unmixed.is_empty() {
+        "Steady state under a continuous source".to_string()
+    } else {
+        format!("Steady state under a continuous source (not well mixed at {} um)", unmixed.join(", "))
+    };
+    if !steady_points.iter().any(|&v| v > 0.0 && v.is_finite()) {
+        return Ok(None);
+    }
+    // Logarithmic: coarse sizes' ratios fall by orders of magnitude.
+    let y_label = if outdoor { "C_in / C_out" } else { "steady concentration per emission (s/m^3)" };
+    plot::log_log(&path, &title, "particle diameter (um)", y_label, &series)?;
+    Ok(Some(path))
 }
 
 impl DistributionReport {

@@ -27,6 +27,8 @@ pub struct Report<'a> {
     pub air_volume_m3: f64,
     /// All surfaces' area (walls and furnishing faces) over the air's volume, 1/m.
     pub surface_to_volume_per_m: f64,
+    /// Where the steady state's continuous source enters.
+    pub steady_source: String,
     pub sizes: &'a [Row],
     /// With a size distribution: where its mass went.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -55,6 +57,7 @@ pub fn report(r: &RoomResult) -> Report<'_> {
         duration_s: study.scene.duration,
         air_volume_m3: study.scene.free_volume(),
         surface_to_volume_per_m: study.scene.surface_to_volume(),
+        steady_source: super::rows::source_label(study),
         sizes: rows,
         distribution: r.distribution.as_ref(),
     }

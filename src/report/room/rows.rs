@@ -6,7 +6,8 @@
 use depo_tracker::filtration::Filtration;
 use depo_tracker::furnishing::FACE_NAMES;
 use depo_tracker::geometry::in_plane_axes;
-use depo_tracker::studies::{RoomPoint, MAP_BINS};
+use depo_tracker::steady::{Source, NOT_WELL_MIXED};
+use depo_tracker::studies::{RoomPoint, RoomStudy, MAP_BINS};
 use depo_tracker::{binomial_error, DecayCurve, Estimate, Scene};
 use serde::Serialize;
 
@@ -97,6 +98,12 @@ pub struct Row {
     /// When half and when nine tenths of the released particles had deposited, s (null where
     /// the run ended first).
     pub deposited_by_s: [Option<f64>; 2],
+    /// The steady concentration in the lowest tenth of the room's height over the room's
+    /// mean, under a source spread over the room (null where nothing removes the particles).
+    pub near_floor_over_mean: Option<Ratio>,
+    /// Whether the room is well mixed for this size: false where `near_floor_over_mean` is
+    /// above 1.2, whose deposition velocities and `beta` are then not a well-mixed room's.
+    pub well_mixed: Option<bool>,
     /// The steady state under a continuous source of this size (null where nothing removes
     /// the particles).
     pub steady: Option<Steady>,
@@ -272,10 +279,44 @@ pub struct Steady {
     pub walls_velocity: Measured,
     /// The share of the residence time taken from the room's late rates beyond the run.
     pub beyond_run: f64,
-    /// With ventilation: the steady indoor/outdoor ratio, the entering outdoor particles' rate
-    /// times their mean residence.
+    /// The steady concentration per particle emitted a second, s/m^3: the mean time in the
+    /// air over the air's volume.
+    pub concentration_per_emission_s_per_m3: Ratio,
+    /// The steady concentration in the lowest tenth of the room's height over the room's
+    /// mean, under this source.
+    pub near_floor_over_mean: Ratio,
+    /// For a source of outdoor air: the steady indoor/outdoor ratio, the entering outdoor
+    /// particles' rate times their mean residence.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub indoor_outdoor: Option<Measured>,
+}
+
+/// A ratio (or a concentration) with its standard error.
+#[derive(Clone, Copy, Serialize)]
+pub struct Ratio {
+    pub value: f64,
+    pub error: f64,
+}
+
+impl From<Estimate> for Ratio {
+    fn from(e: Estimate) -> Self {
+        Self { value: e.value, error: e.error }
+    }
+}
+
+/// Where `study`'s continuous source enters, as the reports say it.
+pub fn source_label(study: &RoomStudy) -> String {
+    let show = |v: [f64; 3]| v.map(crate::text::shown).join(", ");
+    match study.source {
+        None if study.scene.exchange_rate() > 0.0 => {
+            "spread over the room: outdoor air infiltrating (or an indoor source)".into()
+        }
+        None => "spread over the room: an indoor source".into(),
+        Some(Source::Indoor(None)) => "indoors, spread over the room".into(),
+        Some(Source::Indoor(Some((low, high)))) => format!("indoors, in the box [{}] to [{}] m", show(low), show(high)),
+        Some(Source::Infiltration) => "outdoor air infiltrating, spread over the room".into(),
+        Some(Source::Supply(k)) => format!("outdoor air through the supply opening openings[{k}]"),
+    }
 }
 
 /// The release at the end of the run.
@@ -382,6 +423,8 @@ pub(super) fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtr
         particles: p.particles,
         averaged_from_s: p.averaged_from,
         deposited_by_s: p.deposited_by,
+        near_floor_over_mean: p.near_floor.map(Into::into),
+        well_mixed: p.near_floor.map(|m| m.value <= NOT_WELL_MIXED),
         steady: p.steady.map(|st| {
             let [floor, ceiling, walls, furnishings, exhausted] = st.fates;
             let hours = |e: Estimate| Estimate { value: e.value / 3600.0, error: e.error / 3600.0, ..e };
@@ -396,6 +439,11 @@ pub(super) fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtr
                 ceiling_velocity: st.deposition_velocity[1].into(),
                 walls_velocity: st.deposition_velocity[2].into(),
                 beyond_run: st.beyond_run,
+                concentration_per_emission_s_per_m3: Ratio {
+                    value: st.residence.value / scene.free_volume(),
+                    error: st.residence.error / scene.free_volume(),
+                },
+                near_floor_over_mean: st.near_floor.into(),
                 indoor_outdoor: p.steady_indoor_outdoor.map(Into::into),
             }
         }),

@@ -9,10 +9,11 @@ use depo_tracker::{Flow, Geometry};
 
 use super::distribution::{DistributionReport, MassUnit, Part, PM_DEFINITION};
 use super::resolution::{particles_to_resolve, two_figures_up, RESOLVABLE, RESOLVED_ERROR};
-use super::rows::Share;
+use super::rows::{source_label, Share};
 use super::{rate_cell, Measured, RoomResult, Row};
 use crate::report::{outln, ERROR_NOTE};
 use crate::text::shown;
+use depo_tracker::steady::NOT_WELL_MIXED;
 
 /// The table of `r`, each line ended, as `depo room` prints it.
 pub fn table(r: &RoomResult) -> String {
@@ -95,7 +96,7 @@ pub fn table(r: &RoomResult) -> String {
     }
     outln!(
         o,
-        "{:>8}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7} {:>6}{}  method",
+        "{:>8}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7} {:>6} {:>10}{}  method",
         "d (um)",
         "floor",
         "L&N",
@@ -106,6 +107,7 @@ pub fn table(r: &RoomResult) -> String {
         "beta (1/h)",
         "L&N",
         "ratio",
+        "near floor",
         if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
     );
     // A surface's figure, flagged with `*` when unresolved.
@@ -123,7 +125,7 @@ pub fn table(r: &RoomResult) -> String {
         let method = if r.averaged_from_s == 0.0 && study.transient > 0.0 { format!("{method} +") } else { method };
         outln!(
             o,
-            "{:>8.3}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7.3} {:>6.2}{}  {method}",
+            "{:>8.3}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7.3} {:>6.2} {:>10}{}  {method}",
             r.diameter_um,
             cell(r, "floor", &r.floor),
             model_cell(r.lai_nazaroff.floor),
@@ -134,6 +136,7 @@ pub fn table(r: &RoomResult) -> String {
             rate_cell(&r.beta_per_hour),
             r.lai_nazaroff.beta_per_hour,
             r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour,
+            near_floor_cell(r),
             r.indoor_outdoor
                 .as_ref()
                 .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
@@ -148,6 +151,14 @@ pub fn table(r: &RoomResult) -> String {
         furnishings_table(o, rows, study);
     }
     outln!(o, "{ERROR_NOTE}");
+    if rows.iter().any(|r| r.well_mixed == Some(false)) {
+        outln!(
+            o,
+            "~ not well mixed for this size: under a steady source spread over the room, the concentration in the lowest \
+             tenth of its height is above {NOT_WELL_MIXED} times the room's mean (near floor); its v_d and beta are not a \
+             well-mixed room's."
+        );
+    }
     let model = |r: &Row| [r.lai_nazaroff.floor, r.lai_nazaroff.ceiling, r.lai_nazaroff.walls];
     if rows.iter().flat_map(model).any(|v| v < MODEL_NONE) {
         outln!(
@@ -193,7 +204,7 @@ pub fn table(r: &RoomResult) -> String {
         shown(study.scene.duration)
     );
     decay_table(o, rows, study.scene.exchange_rate() * 3600.0, !study.scene.openings.is_empty());
-    steady_table(o, rows);
+    steady_table(o, rows, study);
     if let Some(d) = &r.distribution {
         d.table(o);
     }
@@ -357,20 +368,21 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
 }
 
 /// The steady state under a continuous source, per size (`depo_tracker::steady`).
-fn steady_table(o: &mut String, rows: &[Row]) {
+fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
     outln!(o, "");
     outln!(
         o,
-        "Under a continuous source (emitted uniformly over the room at a constant rate: indoors, or outdoor air \
-         infiltrating), at steady state, from the release followed from t = 0: the mean time in the air (the airborne \
-         number per particle emitted an hour), the deposition velocities (flux over the mean concentration), the share \
-         of the source ending in each place, % (and the share of the time in the air from beyond the run, the room's \
-         late rates'), and with ventilation C_in/C_out."
+        "Under a continuous source ({}), at steady state, from its release followed from t = 0: the mean time in the \
+         air (the airborne number per particle emitted an hour), the deposition velocities (flux over the mean \
+         concentration), the share of the source ending in each place, % (and the share of the time in the air from \
+         beyond the run, the room's late rates'), the concentration in the lowest tenth of the height over the mean, \
+         and for outdoor air C_in/C_out.",
+        source_label(study)
     );
     let ventilated = rows.iter().any(|r| r.steady.as_ref().is_some_and(|s| s.indoor_outdoor.is_some()));
     outln!(
         o,
-        "{:>8}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7}{}",
+        "{:>8}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7} {:>12}{}",
         "d (um)",
         "time in air (h)",
         "floor (m/s)",
@@ -382,6 +394,7 @@ fn steady_table(o: &mut String, rows: &[Row]) {
         "furnish",
         "exhausted",
         "beyond",
+        "near floor",
         if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
     );
     for (i, r) in rows.iter().enumerate() {
@@ -393,7 +406,7 @@ fn steady_table(o: &mut String, rows: &[Row]) {
         let pct = |x: f64| format!("{:.1}", 100.0 * x);
         outln!(
             o,
-            "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7}{}",
+            "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7} {:>12}{}",
             r.diameter_um,
             format!("{:.3} +- {:.3}", st.residence_h.value, st.residence_h.error),
             st.floor_velocity.cell(),
@@ -405,10 +418,21 @@ fn steady_table(o: &mut String, rows: &[Row]) {
             pct(st.furnishings),
             pct(st.exhausted),
             pct(st.beyond_run),
+            format!("{:.2} +- {:.2}", st.near_floor_over_mean.value, st.near_floor_over_mean.error),
             st.indoor_outdoor
                 .as_ref()
                 .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
         );
+    }
+}
+
+/// The near-floor concentration over the mean under a source spread over the room, `1.02`,
+/// marked `~` where the room is not well mixed for the size; `-` where there is none.
+fn near_floor_cell(r: &Row) -> String {
+    match (r.near_floor_over_mean, r.well_mixed) {
+        (Some(m), Some(false)) => format!("{:.2} ~", m.value),
+        (Some(m), _) => format!("{:.2}  ", m.value),
+        (None, _) => "-  ".to_string(),
     }
 }
 

@@ -130,3 +130,44 @@ fn a_cancelled_study_ends_with_the_cancelled_error() {
     assert_eq!(outcome.err(), Some(Error::Cancelled));
     assert_eq!(Error::Cancelled.to_string(), "the study was cancelled");
 }
+
+/// A size the room does not mix well is said so beside its figure, in every report: the
+/// table's `near floor` cell is marked `~` with a legend line, the JSON's `well_mixed` is
+/// false and the CSV's `well_mixed` column says so; for a size it mixes (0.3 um) none of it.
+/// The figure of the steady state names it in its title.
+#[test]
+fn a_size_the_room_does_not_mix_well_is_flagged_in_every_report() {
+    let text = "[particles]\ndiameters = [0.3e-6, 50e-6]\ncount = 300\ntarget_error = 0.0\n\
+                [run]\nexcursions = false\nduration = 600.0\n";
+    let input = SceneInput::Text { text: text.into(), name: "scene".into(), dir: ".".into() };
+    let result = study(&RoomOptions::new(input), &mut crate::report::Silent).unwrap();
+    let [fine, coarse] = &result.rows[..] else { panic!("two sizes") };
+    assert_eq!((fine.well_mixed, coarse.well_mixed), (Some(true), Some(false)));
+    let near = coarse.near_floor_over_mean.unwrap();
+    assert!(near.value > 1.2 + 3.0 * near.error, "{}", near.value);
+
+    let table = table::table(&result);
+    let line = |d: &str| table.lines().find(|l| l.trim_start().starts_with(d)).unwrap().to_string();
+    assert!(line("50.000").contains(&format!("{:.2} ~", near.value)), "{}", line("50.000"));
+    assert!(!line("0.300").contains(" ~ "), "{}", line("0.300"));
+    assert!(table.contains("~ not well mixed for this size"), "{table}");
+
+    let json: serde_json::Value = serde_json::from_str(&json::to_json(&result).unwrap()).unwrap();
+    assert_eq!(json["sizes"][0]["well_mixed"], serde_json::json!(true));
+    assert_eq!(json["sizes"][1]["well_mixed"], serde_json::json!(false));
+    assert_eq!(json["sizes"][1]["near_floor_over_mean"]["value"].as_f64(), Some(near.value));
+
+    let csv = csv::to_csv(&result).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = header.iter().position(|h| *h == "well_mixed").expect("a well_mixed column");
+    let cells: Vec<String> = lines.map(|l| l.split(',').nth(column).unwrap().to_string()).collect();
+    assert_eq!(cells, ["true", "false"]);
+
+    let dir = std::env::temp_dir().join(format!("depo-not-mixed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    figures::figures(&dir, &result, &mut |_| {}).unwrap();
+    let svg = std::fs::read_to_string(dir.join("room-steady.svg")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(svg.contains("not well mixed at 50 um"), "the steady figure's title");
+}
