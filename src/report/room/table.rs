@@ -154,9 +154,8 @@ pub fn table(r: &RoomResult) -> String {
     if rows.iter().any(|r| r.well_mixed == Some(false)) {
         outln!(
             o,
-            "~ not well mixed for this size: under a steady source spread over the room, the concentration in the lowest \
-             tenth of its height is above {NOT_WELL_MIXED} times the room's mean (near floor); its v_d and beta are not a \
-             well-mixed room's."
+            "~ not well mixed for this size: near-floor concentration above {NOT_WELL_MIXED} times the room's mean, so v_d and \
+             beta are not a well-mixed room's (--help says more)."
         );
     }
     let model = |r: &Row| [r.lai_nazaroff.floor, r.lai_nazaroff.ceiling, r.lai_nazaroff.walls];
