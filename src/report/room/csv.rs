@@ -101,6 +101,9 @@ pub fn to_csv(r: &RoomResult) -> Result<String, Error> {
         rows.iter().map(|r| {
             let n = |m: &Measured| m.events.to_string();
             let x = |v: f64| v.to_string();
+            // An absent figure (no decay fit, no steady state, no indoor/outdoor ratio) is a
+            // pair of empty cells, not NaN.
+            let pair = |m: Option<(f64, f64)>| m.map_or([String::new(), String::new()], |(v, e)| [x(v), x(e)]);
             let mut row = vec![
                 x(r.diameter_um),
                 x(r.floor.value),
@@ -121,8 +124,7 @@ pub fn to_csv(r: &RoomResult) -> Result<String, Error> {
             }
             row.extend([x(r.beta_per_hour.value), x(r.beta_per_hour.error), x(r.lai_nazaroff.beta_per_hour)]);
             if ventilated {
-                let io = r.indoor_outdoor.as_ref().map_or([f64::NAN; 2], |m| [m.value, m.error]);
-                row.extend([x(io[0]), x(io[1])]);
+                row.extend(pair(r.indoor_outdoor.as_ref().map(|m| (m.value, m.error))));
             }
             if supply_filtered {
                 row.push(x(r.supply_filter_efficiency.unwrap_or(0.0)));
@@ -130,9 +132,9 @@ pub fn to_csv(r: &RoomResult) -> Result<String, Error> {
             if recirculated {
                 row.push(x(r.recirculation_filter_efficiency.unwrap_or(0.0)));
             }
-            let fitted = r.decay_fit.as_ref().map_or([f64::NAN; 2], |f| [f.beta_per_hour.value, f.beta_per_hour.error]);
+            // No decay fit (fewer than 3 sample times: every particle gone early): empty cells.
+            row.extend(pair(r.decay_fit.as_ref().map(|f| (f.beta_per_hour.value, f.beta_per_hour.error))));
             let release = &r.release;
-            row.extend([fitted[0], fitted[1]].map(x));
             row.extend(
                 [&release.floor, &release.ceiling, &release.walls, &release.exhausted, &release.airborne]
                     .map(|s| x(s.share)),
@@ -155,9 +157,6 @@ pub fn to_csv(r: &RoomResult) -> Result<String, Error> {
             if let Some(share) = &release.furnishings {
                 row.extend([x(share.share), x(surface_to_volume)]);
             }
-            // An absent figure (no steady state; no indoor/outdoor ratio for an indoor source)
-            // is an empty cell.
-            let pair = |m: Option<(f64, f64)>| m.map_or([String::new(), String::new()], |(v, e)| [x(v), x(e)]);
             let steady = r.steady.as_ref();
             row.extend(pair(r.near_floor_over_mean.map(|m| (m.value, m.error))));
             row.push(r.well_mixed.map_or(String::new(), |w| w.to_string()));

@@ -171,3 +171,23 @@ fn a_size_the_room_does_not_mix_well_is_flagged_in_every_report() {
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(svg.contains("not well mixed at 50 um"), "the steady figure's title");
 }
+
+/// A figure that does not exist is an empty CSV cell, never `NaN`: 50 um particles all settle
+/// within a minute, before the decay fit has three sample times, so their fitted `beta` is
+/// absent (and ventilated, the indoor/outdoor columns are there and filled).
+#[test]
+fn the_csv_leaves_an_absent_figure_empty_not_nan() {
+    let text = "[particles]\ndiameters = [50e-6]\ncount = 100\ntarget_error = 0.0\n\
+                [ventilation]\nair_changes_per_hour = 1.0\n[run]\nexcursions = false\nduration = 600.0\n";
+    let input = SceneInput::Text { text: text.into(), name: "scene".into(), dir: ".".into() };
+    let result = study(&RoomOptions::new(input), &mut crate::report::Silent).unwrap();
+    assert!(result.rows[0].decay_fit.is_none(), "no fit for particles gone within a minute");
+    let csv = csv::to_csv(&result).unwrap();
+    assert!(!csv.contains("NaN"), "{csv}");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let cell = |name: &str| row[header.iter().position(|h| *h == name).unwrap()];
+    assert_eq!((cell("beta_fitted_per_hour"), cell("beta_fitted_error")), ("", ""));
+    assert!(cell("indoor_outdoor").parse::<f64>().is_ok_and(|v| v > 0.0 && v < 1.0));
+}
