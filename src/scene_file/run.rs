@@ -23,8 +23,11 @@ pub(super) struct RunFile {
     pub(super) drag: Option<String>,
     /// "gaussian", "intermittent" (channels) or "wall-function".
     pub(super) near_wall: Option<String>,
-    /// The wall function's correlation: "wood", "papavergos-hedley" or "lai-nazaroff".
+    /// The wall function's correlation: "wood", "papavergos-hedley", "lai-nazaroff" or
+    /// "hussein".
     pub(super) correlation: Option<String>,
+    /// The wall function's correlation on vertical surfaces, if not `correlation`.
+    pub(super) vertical_correlation: Option<String>,
     /// The wall function's layer in wall units.
     pub(super) layer_plus: Option<f64>,
     /// "exponential" or "midpoint".
@@ -60,12 +63,20 @@ pub(super) fn apply_run_choices(src: &SceneSource, scene: &mut Scene, run: &RunF
         None => {}
     }
     let correlation = named(src, "run.correlation", run.correlation.as_deref(), &Correlation::NAMED)?;
+    let vertical = named(src, "run.vertical_correlation", run.vertical_correlation.as_deref(), &Correlation::NAMED)?;
     if let Some(wf) = &mut scene.wall_function {
         set(&mut wf.correlation, correlation);
+        if vertical.is_some() {
+            wf.vertical = vertical;
+        }
         set(&mut wf.layer_plus, run.layer_plus);
-    } else if let Some(key) = [(correlation.is_some(), "run.correlation"), (run.layer_plus.is_some(), "run.layer_plus")]
-        .into_iter()
-        .find_map(|(given, key)| given.then_some(key))
+    } else if let Some(key) = [
+        (correlation.is_some(), "run.correlation"),
+        (vertical.is_some(), "run.vertical_correlation"),
+        (run.layer_plus.is_some(), "run.layer_plus"),
+    ]
+    .into_iter()
+    .find_map(|(given, key)| given.then_some(key))
     {
         return Err(src.at(&[key], format!("`{key}` is for a wall function: set `run.near_wall = \"wall-function\"`")));
     }

@@ -295,3 +295,25 @@ fn the_source_s_entry_is_read_and_its_errors_name_the_key_written() {
         " line 9: `source.region` needs `source.enters` = \"indoor\""
     );
 }
+
+/// A room's wall function takes Lai & Nazaroff's correlation, and on its vertical walls the
+/// one `run.vertical_correlation` names; the key is refused without a wall function.
+#[test]
+fn the_vertical_walls_take_their_own_correlation() {
+    use depo_tracker::{Correlation, WallFunction};
+    let text = format!("{ROOM}[run]\nnear_wall = \"wall-function\"\nvertical_correlation = \"hussein\"\n");
+    let path = scene_file("vertical", &text);
+    let scene = room_scene(&SceneInput::Path(path.clone())).map(|s| s.study.scene.wall_function);
+    std::fs::remove_file(&path).unwrap();
+    let expected = WallFunction { vertical: Some(Correlation::Hussein), ..WallFunction::new(Correlation::LaiNazaroff) };
+    assert_eq!(scene, Ok(Some(expected)));
+    assert_eq!(
+        room_error("unset", "[run]\nduration = 10.0\nvertical_correlation = \"hussein\"\n"),
+        " line 10: `run.vertical_correlation` is for a wall function: set `run.near_wall = \"wall-function\"`"
+    );
+    let message = room_error("name", "[run]\nnear_wall = \"wall-function\"\nvertical_correlation = \"zhao-wu\"\n");
+    assert!(
+        message.ends_with("expected \"wood\" or \"papavergos-hedley\" or \"lai-nazaroff\" or \"hussein\""),
+        "{message}"
+    );
+}

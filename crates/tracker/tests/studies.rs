@@ -741,6 +741,41 @@ fn the_room_wall_function_gives_lai_nazaroff_by_orientation() {
     }
 }
 
+/// The vertical walls take their own correlation where the wall function names one, and only
+/// they: with Wood's on the walls (0.75 of Lai & Nazaroff's for 1 um at u* = 1 cm/s), the
+/// walls deposit at Wood's velocity within three standard errors and 8 % (the walls' layers
+/// held 0.99 of the mean concentration in the test above) and away from Lai & Nazaroff's by
+/// more than that, and the floor and ceiling still at Lai & Nazaroff's, within three
+/// standard errors and 15 % as above.
+#[test]
+fn the_room_s_vertical_walls_take_their_own_correlation() {
+    let mut scene = RoomStudy::default().scene;
+    scene.wall_function =
+        Some(WallFunction { vertical: Some(Correlation::Wood), ..WallFunction::new(Correlation::LaiNazaroff) });
+    scene.duration = 900.0;
+    scene.average_from = 60.0;
+    let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
+    let result = run(&scene, &injection).unwrap();
+    let ln = depo_tracker::correlations::LaiNazaroff::new(1e-6, 1000.0, &scene.air, 9.80665, 0.01);
+    let nu = scene.air.kinematic_viscosity();
+    let sc = depo_tracker::correlations::schmidt(1e-6, &scene.air);
+    let aero = depo_tracker::Aerodynamics::new(1e-6, 1000.0, &scene.air, 9.80665);
+    let wood = depo_tracker::correlations::wood(aero.relaxation_time * 1e-4 / nu, sc) * 0.01;
+    let walls = result.deposition_velocity(&result.walls_facing(Orientation::Wall));
+    println!(
+        "walls: {:.3e} +- {:.1e} against Wood {wood:.3e}, Lai & Nazaroff {:.3e}",
+        walls.value, walls.error, ln.wall
+    );
+    let band = |model: f64| 3.0 * walls.error / model + 0.08;
+    assert!((walls.value / wood - 1.0).abs() < band(wood), "{walls:?} against {wood}");
+    assert!((walls.value / ln.wall - 1.0).abs() > band(ln.wall), "{walls:?} against {}", ln.wall);
+    for (orientation, model) in [(Orientation::Floor, ln.floor), (Orientation::Ceiling, ln.ceiling)] {
+        let v = result.deposition_velocity(&result.walls_facing(orientation));
+        println!("{orientation:?}: {:.3e} +- {:.1e} against {model:.3e}", v.value, v.error);
+        assert!((v.value / model - 1.0).abs() < 3.0 * v.error / model + 0.15, "{orientation:?}: {v:?} against {model}");
+    }
+}
+
 /// A furnished room with a supply and an exhaust runs with the wall function, and where the
 /// resolved model is right (0.01 um, the diffusion regime, 1.05 of Lai & Nazaroff in the bare
 /// room: docs/validation.md) the two give the same loss rate onto the room's walls within three

@@ -7,6 +7,7 @@
 use depo_wall_model::{SizeDependence, WallLaw};
 
 use crate::model::air::Air;
+use crate::model::geometry::Orientation;
 
 /// What a wall does with a particle that touches it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,17 +35,22 @@ pub enum Correlation {
     /// Lai & Nazaroff (2000): a room's floor, ceiling and walls by orientation, with settling
     /// (Brownian and turbulent diffusion and gravity; no inertia).
     LaiNazaroff,
+    /// Hussein, Smolík, Kerminen & Kulmala (2012): floor, ceiling and walls by orientation,
+    /// with settling and turbophoresis besides Brownian and turbulent diffusion
+    /// ([`crate::correlations::hussein`]).
+    Hussein,
 }
 
 impl Correlation {
     /// Every correlation with its name as scene files and the command write it.
-    pub const NAMED: [(&'static str, Correlation); 3] = [
+    pub const NAMED: [(&'static str, Correlation); 4] = [
         ("wood", Correlation::Wood),
         ("papavergos-hedley", Correlation::PapavergosHedley),
         ("lai-nazaroff", Correlation::LaiNazaroff),
+        ("hussein", Correlation::Hussein),
     ];
 
-    /// Its name (`wood`, `papavergos-hedley`, `lai-nazaroff`).
+    /// Its name (`wood`, `papavergos-hedley`, `lai-nazaroff`, `hussein`).
     #[must_use]
     pub fn name(self) -> &'static str {
         Self::NAMED.iter().find(|(_, c)| *c == self).map_or("", |(n, _)| n)
@@ -56,6 +62,8 @@ impl Correlation {
 pub struct WallFunction {
     /// Where the deposition velocity comes from.
     pub correlation: Correlation,
+    /// Where it comes from on vertical surfaces, if not from `correlation`.
+    pub vertical: Option<Correlation>,
     /// The layer's thickness `y_w` in wall units, `y_w u* / nu` (30 by default: the bottom
     /// of the logarithmic layer, where wall-function meshes put their first cell).
     pub layer_plus: f64,
@@ -68,7 +76,16 @@ impl WallFunction {
     /// `correlation` over a layer of [`WallFunction::LAYER_PLUS`].
     #[must_use]
     pub fn new(correlation: Correlation) -> Self {
-        Self { correlation, layer_plus: Self::LAYER_PLUS }
+        Self { correlation, vertical: None, layer_plus: Self::LAYER_PLUS }
+    }
+
+    /// The correlation for a surface facing `orientation`.
+    #[must_use]
+    pub fn correlation_for(&self, orientation: Orientation) -> Correlation {
+        match (orientation, self.vertical) {
+            (Orientation::Wall, Some(vertical)) => vertical,
+            _ => self.correlation,
+        }
     }
 
     /// The layer's thickness, m, for friction velocity `u*` (m/s) in `air`.

@@ -81,6 +81,101 @@ impl LaiNazaroff {
     }
 }
 
+/// Hussein, Smolík, Kerminen & Kulmala (2012), *Modeling dry deposition of aerosol particles
+/// onto rough surfaces*, Aerosol Sci. Technol. 46:44-59, on a smooth surface: the dimensionless
+/// deposition velocity `V+ = v_d / u*` of an Eulerian drift-flux model with Brownian and
+/// turbulent diffusion, settling and turbophoresis, for Schmidt number `schmidt`, relaxation
+/// time `tau_plus = tau u*^2 / nu`, radius `r_plus = r u* / nu` and settling speed
+/// `settling_plus = v_s / u*` in wall units, onto a surface `facing` up (1, a floor), sideways
+/// (0, a vertical wall) or down (-1, a ceiling).
+///
+/// The flux `J` towards the wall is constant across the layer `r+ < y+ < 100`:
+///
+/// ```text
+/// J+ = D+ dC/dy+ + (facing v_s+ + tau+ d(v_p+^2)/dy+) C,   C(r+) = 0
+/// V+ = J+ / C(100) = 1 / ∫_{r+}^{100} exp(F(y+) - F(100)) / D+ dy+
+/// F(y+) = ∫_{r+}^{y+} (facing v_s+ + tau+ d(v_p+^2)/dy+) / D+ dy+
+/// D+ = 1/Sc + x nu_t+,   x = tau_L+ / (tau_L+ + tau+),   tau_L+ = nu_t+ / v_y+^2
+/// v_p+^2 = v_y+^2 / (1 + (tau+/tau_L+)^(1/2) + (tau+/tau_L+)^(3/2))
+/// v_y+ = 0.005 y+^2 / (1 + 0.002923 y+^2.128)
+/// nu_t+ = (y+/11.15)^3 (y+ < 3),  (y+/11.4)^2 - 0.049774 (y+ < 52.108),  0.4 y+
+/// ```
+///
+/// The equations and every constant are as the model's author wrote them in its Fortran
+/// form, routine `DEPOFROUGH` of the aerosol model MAFOR v2 (github.com/mafor2/mafor,
+/// `src/GDE/gde_deposition.f90`; the paper itself could not be read): the wall-normal rms
+/// `v_y+` is Guha's (1997) fit "after Zhao and Wu (2006a)", the eddy viscosity Lai &
+/// Nazaroff's (2000) with Johansen's (1991) `0.4 y+` beyond `y+ = 52.108`, the reference
+/// concentration that at `y+ = 100` (its `Ymax`), the deposition plane the particle's
+/// radius (a smooth surface: roughness `F+ = 0`) and the settling term's sign by
+/// orientation (`i_surface`). Two readings of that routine are made here: the turbophoretic
+/// drift is `-tau d(v_p^2)/dy` as its equation (3) states, where the routine takes its
+/// magnitude (the two differ only beyond `y+` 56, where `v_y` falls; by less than 0.1 % in
+/// the cases of docs/validation.md), and of the two particle intensities it carries (the
+/// `x v_y^2` of its comments and the form above) the one it computes. The integrals are
+/// taken on a logarithmic grid of [`HUSSEIN_CELLS`] cells (the routine's own grid has 450).
+///
+/// Where `tau+` is small (a room's `u*` of about 1 cm/s and particles up to 10 um) the drift
+/// hardly acts where the transfer is limited, within a few wall units of the wall, and the
+/// model gives Lai & Nazaroff's (2000) diffusion within a few per cent (docs/validation.md).
+#[must_use]
+pub fn hussein(schmidt: f64, tau_plus: f64, r_plus: f64, settling_plus: f64, facing: f64) -> f64 {
+    let n = HUSSEIN_CELLS;
+    let (u0, u1) = (r_plus.ln(), HUSSEIN_TOP.ln());
+    let h = (u1 - u0) / n as f64;
+    let y = |k: usize| (u0 + h * k as f64).exp();
+    let wall_normal_sq = |y: f64| {
+        let v = 0.005 * y * y / (1.0 + 0.002923 * y.powf(2.128));
+        v * v
+    };
+    let eddy_viscosity = |y: f64| {
+        if y < 3.0 {
+            (y / 11.15).powi(3)
+        } else if y < 52.108 {
+            (y / 11.4).powi(2) - 0.049_774
+        } else {
+            0.4 * y
+        }
+    };
+    // The particle's intensity and diffusivity at `y`.
+    let particle = |y: f64| {
+        let (vy2, nut) = (wall_normal_sq(y), eddy_viscosity(y));
+        let tau_l = nut / vy2;
+        let r = tau_plus / tau_l;
+        let vp2 = vy2 / (1.0 + r.sqrt() + r * r.sqrt());
+        (vp2, 1.0 / schmidt + tau_l / (tau_l + tau_plus) * nut)
+    };
+    // F at the grid's nodes, then the integral, each cell taken at its (geometric) middle.
+    let mut f = Vec::with_capacity(n + 1);
+    f.push(0.0);
+    let (mut vp2_low, mut y_low) = (particle(y(0)).0, y(0));
+    for k in 0..n {
+        let y_high = y(k + 1);
+        let (vp2_high, _) = particle(y_high);
+        let (_, d) = particle((y_low * y_high).sqrt());
+        let step = (facing * settling_plus * (y_high - y_low) + tau_plus * (vp2_high - vp2_low)) / d;
+        f.push(f[k] + step);
+        (vp2_low, y_low) = (vp2_high, y_high);
+    }
+    let top = f[n];
+    let integral: f64 = (0..n)
+        .map(|k| {
+            let (a, b) = (y(k), y(k + 1));
+            let (_, d) = particle((a * b).sqrt());
+            (0.5 * (f[k] + f[k + 1]) - top).exp() / d * (b - a)
+        })
+        .sum();
+    1.0 / integral
+}
+
+/// The outer edge of [`hussein`]'s layer, where its reference concentration is taken, in
+/// wall units (`Ymax` of the model's routine).
+pub const HUSSEIN_TOP: f64 = 100.0;
+
+/// The cells of [`hussein`]'s logarithmic grid from the particle's radius to
+/// [`HUSSEIN_TOP`].
+pub const HUSSEIN_CELLS: usize = 4000;
+
 /// Wood (1981), *A simple method for the calculation of turbulent deposition to smooth and
 /// rough surfaces*, J. Aerosol Sci. 12: `V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2`, at most 0.13
 /// (the inertia-moderated plateau).
@@ -199,6 +294,61 @@ mod tests {
         assert!(one.wall < 1e-5 && one.wall > 1e-7, "{}", one.wall);
         let beta = one.loss_rate([4.0, 4.0, 2.5]);
         assert!((beta - (one.floor + one.ceiling) / 2.5 - one.wall * 2.0 * 8.0 / 16.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn hussein_matches_an_independent_evaluation() {
+        // Evaluated independently of this code from the equations in its docs: Simpson's rule
+        // on 200000 logarithmic cells, the drift from the analytic derivative of v_p^2
+        // (converged to 6e-7 or better against 400000 cells).
+        let cases = [
+            // (Sc, tau+, r+, v_s+, facing, V+): inertial onto a wall, floor and ceiling with
+            // settling, a room's 1 um particle, the inertia-moderated regime.
+            (1e6, 1.0, 0.3, 0.0, 0.0, 3.254_683_934_1e-4),
+            (1e4, 0.01, 0.05, 0.01, 1.0, 1.007_118_730_8e-2),
+            (1e4, 0.01, 0.05, 1e-4, -1.0, 1.302_176_173_6e-4),
+            (1e4, 0.01, 0.05, 1e-4, 1.0, 2.312_650_986_1e-4),
+            (2e5, 1e-3, 3e-3, 0.0, 0.0, 2.200_548_531_8e-5),
+            (1e7, 10.0, 1.0, 0.0, 0.0, 7.232_717_646_3e-2),
+        ];
+        for (sc, tp, rp, vs, facing, expected) in cases {
+            let v = hussein(sc, tp, rp, vs, facing);
+            assert!((v / expected - 1.0).abs() < 2e-5, "Sc {sc} tau+ {tp}: {v} against {expected}");
+        }
+    }
+
+    #[test]
+    fn hussein_has_its_limits() {
+        // With a constant drift w (no inertia) V+(w) = w / (1 - exp(-w Phi)), Phi = ∫ dy/D+,
+        // so a floor takes exactly v_s+ more than a ceiling.
+        let (sc, rp, vs) = (1e4, 0.05, 2e-4);
+        let (up, down, side) =
+            (hussein(sc, 0.0, rp, vs, 1.0), hussein(sc, 0.0, rp, vs, -1.0), hussein(sc, 0.0, rp, vs, 0.0));
+        assert!(((up - down) / vs - 1.0).abs() < 1e-6, "{up} {down}");
+        let phi = 1.0 / side;
+        assert!((up / (vs / -(-vs * phi).exp_m1()) - 1.0).abs() < 1e-6);
+        // Turbophoresis carries inertial particles: at tau+ = 10 a wall takes about 50 times
+        // what diffusion alone gives the same Schmidt number (tau+ = 0), at 3 less.
+        let diffusion = hussein(1e7, 0.0, 1.0, 0.0, 0.0);
+        let (t3, t10) = (hussein(1e7, 3.0, 1.0, 0.0, 0.0), hussein(1e7, 10.0, 1.0, 0.0, 0.0));
+        assert!(t10 > 20.0 * diffusion && t10 > t3 && t3 > diffusion, "{diffusion} {t3} {t10}");
+        // The grid's error where the drift varies most: below 1e-5 of the converged value.
+        let v = hussein(1e6, 1.0, 0.3, 0.0, 0.0);
+        assert!((v / 3.254_683_934_1e-4 - 1.0).abs() < 1e-5, "{v}");
+    }
+
+    #[test]
+    fn hussein_is_lai_and_nazaroff_s_diffusion_where_inertia_is_small() {
+        // A room's 1 um particle at u* = 1 cm/s (tau+ 2e-5): the drift is negligible and the
+        // model's eddy viscosity is Lai & Nazaroff's, its layer 100 wall units against 30.
+        let air = Air::standard();
+        let aero = Aerodynamics::new(1e-6, 1000.0, &air, 9.80665);
+        let (u, nu) = (0.01, air.kinematic_viscosity());
+        let (sc, rp) = (nu / aero.diffusivity, 0.5e-6 * u / nu);
+        let tp = aero.relaxation_time * u * u / nu;
+        let wall = hussein(sc, tp, rp, aero.settling_speed / u, 0.0) * u;
+        let ln = LaiNazaroff::new(1e-6, 1000.0, &air, 9.80665, u);
+        assert!((wall / ln.wall - 1.0).abs() < 0.05, "{wall} {}", ln.wall);
     }
 
     #[test]

@@ -48,7 +48,7 @@
 use crate::model::air::{Aerodynamics, Air};
 use crate::model::geometry::Orientation;
 use crate::model::walls::Correlation;
-use crate::physics::correlations::{papavergos_hedley, wood, LaiNazaroff};
+use crate::physics::correlations::{hussein, papavergos_hedley, wood, LaiNazaroff};
 
 /// The deposition velocity (m/s) that `correlation` gives onto a smooth surface facing
 /// `orientation`, for a particle `aero` (settling speed under the scene's gravity) in `air`
@@ -76,6 +76,15 @@ pub fn deposition_velocity(
                 Orientation::Ceiling => ln.ceiling,
                 Orientation::Wall => ln.wall,
             }
+        }
+        Correlation::Hussein => {
+            let r_plus = 0.5 * aero.diameter * friction_velocity / nu;
+            let facing = match orientation {
+                Orientation::Floor => 1.0,
+                Orientation::Wall => 0.0,
+                Orientation::Ceiling => -1.0,
+            };
+            hussein(schmidt, tau_plus, r_plus, aero.settling_speed / friction_velocity, facing) * friction_velocity
         }
     }
 }
@@ -132,6 +141,27 @@ mod tests {
         assert!((floor - ceiling - settling.settling_speed).abs() < 1e-12 * floor);
         let direct = LaiNazaroff::new(5e-6, 1000.0, &air, 9.80665, 0.01);
         assert!((wall / direct.wall - 1.0).abs() < 1e-12 && (floor / direct.floor - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn hussein_s_velocity_is_its_v_plus_by_orientation() {
+        let air = Air::standard();
+        let (u_star, nu) = (0.3, air.kinematic_viscosity());
+        let aero = Aerodynamics::new(5e-6, 1000.0, &air, 9.80665);
+        let (sc, tp) = (nu / aero.diffusivity, aero.relaxation_time * u_star * u_star / nu);
+        let (rp, vs) = (2.5e-6 * u_star / nu, aero.settling_speed / u_star);
+        for (orientation, facing) in [(Orientation::Floor, 1.0), (Orientation::Wall, 0.0), (Orientation::Ceiling, -1.0)]
+        {
+            let v = deposition_velocity(Correlation::Hussein, &aero, &air, u_star, orientation);
+            let direct = crate::physics::correlations::hussein(sc, tp, rp, vs, facing) * u_star;
+            assert!((v / direct - 1.0).abs() < 1e-12, "{orientation:?}: {v} {direct}");
+        }
+        // A wall function picks it for the vertical walls only, where it is named for them.
+        let wf = WallFunction { vertical: Some(Correlation::Hussein), ..WallFunction::new(Correlation::LaiNazaroff) };
+        assert_eq!(wf.correlation_for(Orientation::Wall), Correlation::Hussein);
+        assert_eq!(wf.correlation_for(Orientation::Floor), Correlation::LaiNazaroff);
+        assert_eq!(WallFunction::new(Correlation::Wood).correlation_for(Orientation::Wall), Correlation::Wood);
+        assert_eq!(Correlation::Hussein.name(), "hussein");
     }
 
     #[test]

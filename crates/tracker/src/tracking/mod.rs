@@ -84,8 +84,8 @@ use crate::model::geometry::Wall;
 use crate::model::openings::{Opening, OpeningKind, CELLS_ALONG_LONGEST};
 use crate::model::potential_flow::{FlowCell, PotentialFlow};
 use crate::model::scene::{Drag, Injection, NearWall, Scene, Scheme, SizeDistribution};
-use crate::model::walls::Correlation;
 use crate::model::walls::WallBehaviour;
+use crate::model::walls::WallFunction;
 use crate::physics::intermittency::Intermittent;
 use crate::physics::noise::{particle_rng, Normals};
 use crate::physics::turbulence::FlowField;
@@ -242,7 +242,8 @@ pub(crate) struct Prepared<'a> {
 
 /// A wall function prepared for a run ([`crate::wall_function`]).
 pub(crate) struct LayerWalls {
-    pub correlation: Correlation,
+    /// The scene's wall function (its correlation by orientation).
+    pub function: WallFunction,
     /// The layer's thickness, m.
     pub layer: f64,
     /// The flow's friction velocity, m/s.
@@ -294,12 +295,7 @@ impl<'a> Prepared<'a> {
                 for (wall, _) in &walls {
                     behaviours[wall.id] = WallBehaviour::Reflect;
                 }
-                Some(LayerWalls {
-                    correlation: wf.correlation,
-                    layer: wf.layer(&scene.air, u_star),
-                    friction_velocity: u_star,
-                    walls,
-                })
+                Some(LayerWalls { function: wf, layer: wf.layer(&scene.air, u_star), friction_velocity: u_star, walls })
             }
             _ => None,
         };

@@ -22,6 +22,7 @@ use rand::RngExt;
 
 use super::contacts::in_joules;
 use super::{Fate, Flyer, Needs, ParticleTally, Prepared, Record, Step, WallTally};
+use crate::model::air::Aerodynamics;
 use crate::model::walls::WallBehaviour;
 use crate::physics::noise::particle_rng;
 use crate::physics::wall_function::{deposition_probability, deposition_velocity};
@@ -40,12 +41,14 @@ pub(crate) fn track_wall_function(
     // The wall function's walls reflect in the step: those contacts are the model's, not the
     // walls', and are not counted (the furnishings' are).
     let mut stepped = vec![WallTally::default(); tally.len()];
+    // The walls' chances for the last particle's size (a run's particles mostly share one).
+    let mut chances = Chances::default();
     let out = {
         let stepped = &mut stepped;
         let tally = &mut *tally;
         macro_rules! dispatch {
         ([$($done:literal)*] []) => {
-            ids.map(|id| run_with_wall_function::<$($done),*>(p, id as u64, stepped, tally)).unzip()
+            ids.map(|id| run_with_wall_function::<$($done),*>(p, id as u64, stepped, tally, &mut chances)).unzip()
         };
         ([$($done:literal)*] [$flag:expr $(, $rest:expr)*]) => {
             if $flag { dispatch!([$($done)* true] [$($rest),*]) } else { dispatch!([$($done)* false] [$($rest),*]) }
@@ -60,6 +63,36 @@ pub(crate) fn track_wall_function(
         }
     }
     out
+}
+
+/// Each wall's chance of an arrival over a step in its layer, for the particle size it was
+/// last computed for (a correlation such as [`crate::correlations::hussein`] integrates
+/// across the layer, too slow to repeat for every particle).
+#[derive(Default)]
+struct Chances {
+    /// The diameter (m) and mass (kg) they are for.
+    size: Option<(f64, f64)>,
+    chance: Vec<f64>,
+}
+
+impl Chances {
+    fn for_particle(&mut self, p: &Prepared<'_>, aero: &Aerodynamics) -> &[f64] {
+        let wf = p.wall_function.as_ref().expect("a scene with a wall function");
+        if self.size != Some((aero.diameter, aero.mass)) {
+            self.chance = wf
+                .walls
+                .iter()
+                .map(|(wall, _)| {
+                    let orientation = wall.orientation();
+                    let correlation = wf.function.correlation_for(orientation);
+                    let v_d = deposition_velocity(correlation, aero, &p.scene.air, wf.friction_velocity, orientation);
+                    deposition_probability(v_d, wf.layer, p.scene.dt)
+                })
+                .collect();
+            self.size = Some((aero.diameter, aero.mass));
+        }
+        &self.chance
+    }
 }
 
 /// What arriving at a wall does to a particle with velocity `v`: captured (deposited), or
@@ -111,6 +144,7 @@ fn run_with_wall_function<
     id: u64,
     stepped: &mut [WallTally],
     tally: &mut [WallTally],
+    chances: &mut Chances,
 ) -> (Record, ParticleTally) {
     let wf = p.wall_function.as_ref().expect("a scene with a wall function");
     let dt = p.scene.dt;
@@ -118,15 +152,7 @@ fn run_with_wall_function<
     let mut flyer = Flyer::inject(p, id, TURB, BROWN);
     let aero = flyer.base.aero;
     // Each wall's chance of an arrival over a step in its layer (0 for walls it skips).
-    let chance: Vec<f64> = wf
-        .walls
-        .iter()
-        .map(|(wall, _)| {
-            let v_d =
-                deposition_velocity(wf.correlation, &aero, &p.scene.air, wf.friction_velocity, wall.orientation());
-            deposition_probability(v_d, wf.layer, dt)
-        })
-        .collect();
+    let chance = chances.for_particle(p, &aero);
     let mut arrivals = particle_rng(p.scene.seed ^ ARRIVAL_SALT, id);
     let mut expected = [0.0; 6];
     let mut steps_in_layer = [0u32; 6];
@@ -140,7 +166,7 @@ fn run_with_wall_function<
         let t = (n + 1) as f64 * dt;
         let counted = t >= window[0] && t <= window[1];
         let mut in_layer = false;
-        for ((wall, behaviour), &chance) in wf.walls.iter().zip(&chance) {
+        for ((wall, behaviour), &chance) in wf.walls.iter().zip(chance) {
             let x = flyer.x;
             if (x[wall.axis] - wall.position).abs() >= wf.layer
                 || p.scene.openings.iter().any(|o| o.wall == wall.id && o.holds(x.to_array()))
