@@ -352,6 +352,25 @@ mod tests {
     }
 
     #[test]
+    fn hussein_in_a_duct_falls_below_wood_where_inertia_starts_to_count() {
+        // A duct's vertical wall at u* = 0.3 m/s, unit density (docs/tracker.md quotes these):
+        // as other Eulerian turbophoresis models on Gaussian-statistics profiles, far below
+        // Wood in the diffusion-impaction regime, near it on the inertia-moderated plateau.
+        let air = Air::standard();
+        let (u, nu) = (0.3, air.kinematic_viscosity());
+        let mut ratios = Vec::new();
+        for tp in [0.5, 2.0, 30.0] {
+            let d = diameter_for_tau_plus(tp, 1000.0, &air, u).unwrap();
+            let sc = schmidt(d, &air);
+            let v = hussein(sc, tp, 0.5 * d * u / nu, 0.0, 0.0);
+            ratios.push(v / wood(tp, sc));
+            println!("tau+ {tp}: d {:.2} um, V+ {v:.3e}, Wood {:.3e}", d * 1e6, wood(tp, sc));
+        }
+        assert!(ratios[0] < 0.2 && ratios[1] < 0.1, "{ratios:?}");
+        assert!(ratios[2] > 0.5 && ratios[2] < 2.0, "{ratios:?}");
+    }
+
+    #[test]
     fn channel_correlations_have_their_regimes() {
         assert!((wood(0.0, 1000.0) - 0.057 * 1e-2).abs() < 1e-15);
         assert!((wood(10.0, 1e6) - (0.057e-4 + 0.045)).abs() < 1e-12);
