@@ -213,6 +213,8 @@ fn negative_numbers_are_values_everywhere() {
         &[&["impact"][..], &law, &["--velocity", "0,0,-1", "--spin", "0,1,0", "--radius", "-1"]].concat(),
         "--radius -1",
     );
+    // Without --spin, which alone uses it, as with it.
+    refused(&[&["impact"][..], &law, &["--velocity", "0,0,-1", "--radius", "-1"]].concat(), "--radius -1");
     refused(&[&["curve"][..], &law, &["--vn-min", "-1"]].concat(), "--vn-min -1");
     refused(&["fit", "examples/li1997-synthetic.csv", "--p", "-1"], "--p");
     refused(&["bench", "--studies", "--scale", "-1"], "--scale -1");

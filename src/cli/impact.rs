@@ -68,11 +68,12 @@ pub fn run(args: &ImpactArgs) -> Result<(), Error> {
     if v.abs().max_element() > MAX_SPEED {
         return Err(format!("--velocity {}: speeds up to {MAX_SPEED:e} m/s are taken", args.velocity));
     }
+    // Refused whether or not --spin uses it: a value is checked where it is given.
+    if !(args.radius.is_finite() && args.radius > 0.0) {
+        return Err(format!("--radius {}: must be positive", args.radius));
+    }
     let spin = match &args.spin {
         Some(text) => {
-            if !(args.radius.is_finite() && args.radius > 0.0) {
-                return Err(format!("--radius {}: must be positive", args.radius));
-            }
             let w = DVec3::from_array(parse_vector(text).map_err(|e| format!("--spin: {e}"))?);
             // The spin's speed at the surface, as the velocity's.
             if w.abs().max_element() * args.radius > MAX_SPEED {
