@@ -194,8 +194,9 @@ fn computed_numbers_in_text_are_rounded() {
     assert!(text.contains("Averages from 0.03 s to 0.3 s;"), "{text}");
     assert!(text.contains("above 7 % error"), "{text}");
     let fit = ok_text(&["fit", "examples/li1997-synthetic.csv", "--free-exponents"]);
+    // Fitted exponents to six figures, each with its standard error.
     let pq = fit.lines().find(|l| l.starts_with("p, q")).unwrap();
-    assert!(pq.len() < 40, "{pq}");
+    assert!(pq.len() < 60 && pq.matches(" +- ").count() == 2, "{pq}");
 }
 
 /// A negative number is a value wherever an option takes one: the command's own check refuses

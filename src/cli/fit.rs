@@ -161,12 +161,11 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
                 out.vc_low,
                 out.vc_high
             );
-            out!(
-                "p, q   {}, {}{}",
-                shown(out.p),
-                shown(out.q),
-                if args.free_exponents { " (fitted)" } else { " (fixed)" }
-            );
+            if args.free_exponents {
+                out!("p, q   {} +- {:.2e}, {} +- {:.2e} (fitted)", shown(out.p), out.p_se, shown(out.q), out.q_se);
+            } else {
+                out!("p, q   {}, {} (fixed)", shown(out.p), shown(out.q));
+            }
             out!("fitting index (R^2 of e) {:.5}   RMSE {:.4}", out.fitting_index, out.rmse);
             out!(
                 "R(vc)  {:.4}   (Eq. 14: work of adhesion at capture / (m vc^2 / 2) = R(vc)^2 = {:.4})",
