@@ -199,7 +199,7 @@ pub fn near_floor(run: &Run, floor_volume: f64) -> Estimate {
 /// The air's volume (m^3) in the lowest [`NEAR_FLOOR_SHARE`] of a room `size` (m) with
 /// `furnishings`.
 #[must_use]
-pub fn near_floor_volume(size: [f64; 3], furnishings: &[crate::Furnishing]) -> f64 {
+pub fn near_floor_volume(size: [f64; 3], furnishings: &[crate::model::furnishing::Furnishing]) -> f64 {
     let high = [size[0], size[1], NEAR_FLOOR_SHARE * size[2]];
     high.iter().product::<f64>() - furnishings.iter().map(|f| f.shared_volume([0.0; 3], high)).sum::<f64>()
 }
@@ -211,11 +211,11 @@ impl Source {
     /// `source.opening`.
     pub fn injection(
         &self,
-        injection: crate::Injection,
+        injection: crate::model::scene::Injection,
         size: [f64; 3],
-        openings: &[crate::Opening],
-    ) -> Result<Option<crate::Injection>, crate::SceneError> {
-        use crate::SceneError;
+        openings: &[crate::model::openings::Opening],
+    ) -> Result<Option<crate::model::scene::Injection>, crate::model::error::SceneError> {
+        use crate::model::error::SceneError;
         match *self {
             Source::Indoor(None) | Source::Infiltration => Ok(None),
             Source::Indoor(Some((low, high))) => {
@@ -236,11 +236,11 @@ impl Source {
                 Ok(Some(injection.within(low, high)))
             }
             Source::Supply(k) => {
-                let Some(o) = openings.get(k).filter(|o| o.kind == crate::OpeningKind::Supply) else {
+                let Some(o) = openings.get(k).filter(|o| o.kind == crate::model::openings::OpeningKind::Supply) else {
                     return Err(SceneError::new("source.opening", k as f64, "must be the index of a supply opening"));
                 };
                 let (axis, upper) = crate::model::openings::wall_axis(o.wall);
-                let axes = crate::geometry::in_plane_axes(axis);
+                let axes = crate::model::geometry::in_plane_axes(axis);
                 let bounds = o.bounds();
                 let (mut low, mut high) = ([0.0; 3], [0.0; 3]);
                 for i in 0..2 {
