@@ -48,7 +48,7 @@
 
        <zone name> preset <preset id>
        <zone name> constants <k1> <k2> <kappa1> <kappa2> <p> <q> <vc> <mu>
-       <zone name> wall-function wood | papavergos-hedley | lai-nazaroff
+       <zone name> wall-function wood | papavergos-hedley | lai-nazaroff | hussein
        record impacts
        captured keep
 */
@@ -194,10 +194,12 @@ _read_zones(void)
         correlation = DEPO_CORRELATION_PAPAVERGOS_HEDLEY;
       else if (n >= 1 && strcmp(name, "lai-nazaroff") == 0)
         correlation = DEPO_CORRELATION_LAI_NAZAROFF;
+      else if (n >= 1 && strcmp(name, "hussein") == 0)
+        correlation = DEPO_CORRELATION_HUSSEIN;
       if (correlation < 0 || n != 1)
         _fail(path, number,
-              "expected \"<zone> wall-function wood|papavergos-hedley|lai-nazaroff\" (a sink: "
-              "no wall law after it)", rest);
+              "expected \"<zone> wall-function wood|papavergos-hedley|lai-nazaroff|hussein\" (a "
+              "sink: no wall law after it)", rest);
       depo_law_free(_laws[z->id]);
       _laws[z->id] = NULL;
       _wf_correlation[z->id] = correlation;

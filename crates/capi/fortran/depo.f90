@@ -24,6 +24,7 @@ module depo
   public :: depo_set_num_threads
   public :: depo_air, depo_deposition_velocity, depo_wall_function_probability
   public :: DEPO_CORRELATION_WOOD, DEPO_CORRELATION_PAPAVERGOS_HEDLEY, DEPO_CORRELATION_LAI_NAZAROFF
+  public :: DEPO_CORRELATION_HUSSEIN
   public :: DEPO_SURFACE_FLOOR, DEPO_SURFACE_CEILING, DEPO_SURFACE_WALL
   public :: depo_last_error_message, depo_version_string
 
@@ -35,9 +36,10 @@ module depo
   !> Capture modes (depo_law_keeping_on_wall).
   integer, parameter :: DEPO_CAPTURE_DEPOSIT = 0, DEPO_CAPTURE_KEEP_ON_WALL = 1
 
-  !> Deposition correlations and surface orientations of the wall function.
+  !> Deposition correlations and surface orientations of the wall function (depo.h says what
+  !> each is; DEPO_CORRELATION_HUSSEIN's velocities are cached per thread by their inputs).
   integer(c_int32_t), parameter :: DEPO_CORRELATION_WOOD = 0, DEPO_CORRELATION_PAPAVERGOS_HEDLEY = 1, &
-                                   DEPO_CORRELATION_LAI_NAZAROFF = 2
+                                   DEPO_CORRELATION_LAI_NAZAROFF = 2, DEPO_CORRELATION_HUSSEIN = 3
   integer(c_int32_t), parameter :: DEPO_SURFACE_FLOOR = 0, DEPO_SURFACE_CEILING = 1, DEPO_SURFACE_WALL = 2
 
   !> The carrier gas (DepoAir): K, Pa, kg/m^3, Pa s; dry air at 20 C by default.

@@ -113,6 +113,20 @@
 #define DEPO_CORRELATION_LAI_NAZAROFF 2
 
 /**
+ * Hussein, Smolík, Kerminen & Kulmala (2012, Aerosol Sci. Technol. 46:44-59): by orientation
+ * as Lai & Nazaroff's, with settling and turbophoresis (an Eulerian drift-flux model across
+ * the layer from the particle's radius to `y+ = 100`, where its reference concentration is
+ * taken), for vertical surfaces under stronger turbulence than a room's. Its velocity is an
+ * integral across that layer, far costlier than the others; each thread keeps the velocities
+ * of up to 65536 distinct inputs (friction velocity, diameter, density, orientation, gas and
+ * gravity; then it starts again empty), so a host calling per particle per step pays the
+ * integral once per particle size and friction velocity while these stay the same. A
+ * particle whose radius reaches 100 wall units (`d u* / (2 nu) >= 100`) is outside the
+ * model's layer and refused.
+ */
+#define DEPO_CORRELATION_HUSSEIN 3
+
+/**
  * An upward-facing surface (a floor; gravity towards it).
  */
 #define DEPO_SURFACE_FLOOR 0
@@ -456,8 +470,9 @@ int32_t depo_accumulate_deposits(size_t n,
  * wall cell `friction_velocity` (m/s): what an Eulerian wall function multiplies the wall
  * cell's concentration by. A correlation or orientation that is not a `DEPO_*` value, an air
  * value that is not finite and positive, a negative gravity, a friction velocity that is not
- * finite and positive, a diameter outside 1 nm to 1 mm, a density not above the gas's, or
- * `velocity` overlapping an input is `DEPO_ERR_INVALID` and writes nothing.
+ * finite and positive, a diameter outside 1 nm to 1 mm, a density not above the gas's, with
+ * `DEPO_CORRELATION_HUSSEIN` a radius of 100 wall units or more, or `velocity` overlapping an
+ * input is `DEPO_ERR_INVALID` and writes nothing.
  */
 int32_t depo_deposition_velocity(int32_t correlation,
                                  int32_t orientation,

@@ -35,6 +35,16 @@ inline std::string version() { return depo_version(); }
 /// hosts; at most DEPO_MAX_THREADS). Batches below DEPO_PARALLEL_MIN always run on the caller.
 inline void set_num_threads(std::size_t threads) { check(depo_set_num_threads(threads)); }
 
+/// The deposition velocity (m/s) of each of `n` particles in wall cells from a deposition
+/// correlation (DEPO_CORRELATION_*; depo_deposition_velocity: the arrays and units are in
+/// depo.h). Throws depo::Error on bad inputs, writing nothing.
+inline void deposition_velocity(std::int32_t correlation, std::int32_t orientation, const DepoAir& air,
+                                double gravity, std::size_t n, const double* friction_velocity,
+                                const double* diameter, const double* density, double* velocity) {
+    check(depo_deposition_velocity(correlation, orientation, &air, gravity, n, friction_velocity, diameter, density,
+                                   velocity));
+}
+
 /// The chance that each of `n` particles in wall cells reaches the wall within a step `dt`
 /// (s), from a deposition correlation (depo_wall_function_probability: the arrays, units and
 /// how a solver uses the chance are in depo.h). Throws depo::Error on bad inputs, writing

@@ -214,9 +214,9 @@ mod deposition;
 pub use deposition::depo_accumulate_deposits;
 mod wall_function;
 pub use wall_function::{
-    depo_deposition_velocity, depo_wall_function_probability, DepoAir, DEPO_CORRELATION_LAI_NAZAROFF,
-    DEPO_CORRELATION_PAPAVERGOS_HEDLEY, DEPO_CORRELATION_WOOD, DEPO_SURFACE_CEILING, DEPO_SURFACE_FLOOR,
-    DEPO_SURFACE_WALL,
+    depo_deposition_velocity, depo_wall_function_probability, DepoAir, DEPO_CORRELATION_HUSSEIN,
+    DEPO_CORRELATION_LAI_NAZAROFF, DEPO_CORRELATION_PAPAVERGOS_HEDLEY, DEPO_CORRELATION_WOOD, DEPO_SURFACE_CEILING,
+    DEPO_SURFACE_FLOOR, DEPO_SURFACE_WALL,
 };
 
 /// `&T` from a pointer that must not be NULL.

@@ -916,11 +916,79 @@ fn wall_function_inputs_out_of_range_are_refused_by_name() {
     assert_eq!((status, p), (DEPO_ERR_NULL, 0.5));
 }
 
+/// Hussein et al.'s velocity of the tracker's `wall_function::deposition_velocity` for one
+/// particle, from an independent path: the tracker's own types.
+fn hussein_in_rust(orientation: depo_tracker::Orientation, u: f64, d: f64, rho: f64) -> f64 {
+    use depo_tracker::wall_function::{deposition_velocity, Correlation};
+    let air = depo_tracker::Air {
+        temperature: AIR.temperature,
+        pressure: AIR.pressure,
+        density: AIR.density,
+        viscosity: AIR.viscosity,
+    };
+    let aero = depo_tracker::Aerodynamics::new(d, rho, &air, 9.80665);
+    deposition_velocity(Correlation::Hussein, &aero, &air, u, orientation)
+}
+
+#[test]
+fn hussein_s_chance_is_the_tracker_s_velocity_by_orientation_cached_or_not() {
+    use depo_tracker::Orientation;
+    let surfaces = [
+        (DEPO_SURFACE_FLOOR, Orientation::Floor),
+        (DEPO_SURFACE_CEILING, Orientation::Ceiling),
+        (DEPO_SURFACE_WALL, Orientation::Wall),
+    ];
+    // A duct's 5 um particle at u* = 0.3 m/s, a room's 3 um one at 1 cm/s, a 40 um one.
+    for (u, d, rho, layer, dt) in
+        [(0.3, 5e-6, 1000.0, 1.5e-3, 1e-3), (0.01, 3e-6, 1500.0, 0.045, 0.1), (0.5, 40e-6, 2500.0, 2e-3, 1e-4)]
+    {
+        let mut by_surface = Vec::new();
+        for (surface, orientation) in surfaces {
+            let expected = hussein_in_rust(orientation, u, d, rho);
+            let mut v = [f64::NAN; 2];
+            for v in &mut v {
+                // The second call is answered from the thread's cache: the same bits.
+                let status = unsafe {
+                    depo_deposition_velocity(DEPO_CORRELATION_HUSSEIN, surface, &AIR, 9.80665, 1, &u, &d, &rho, v)
+                };
+                assert_eq!(status, DEPO_OK, "{}", last_error());
+            }
+            assert_eq!(v[0].to_bits(), expected.to_bits(), "{orientation:?} u* {u} d {d}: {} {expected}", v[0]);
+            assert_eq!(v[1].to_bits(), expected.to_bits());
+            // Another thread, with a cache of its own, computes the same.
+            let other = std::thread::spawn(move || chance(DEPO_CORRELATION_HUSSEIN, surface, dt, u, layer, d, rho))
+                .join()
+                .unwrap()
+                .unwrap();
+            let p = chance(DEPO_CORRELATION_HUSSEIN, surface, dt, u, layer, d, rho).unwrap();
+            assert_eq!(p.to_bits(), other.to_bits());
+            let poisson = -(-expected * dt / layer).exp_m1();
+            assert!((p - poisson).abs() <= 1e-15 * poisson, "{orientation:?} u* {u} d {d}: {p} {poisson}");
+            by_surface.push(expected);
+        }
+        // Settling: a floor takes more than a wall, a wall more than a ceiling.
+        assert!(by_surface[0] > by_surface[2] && by_surface[2] > by_surface[1], "{by_surface:?}");
+    }
+}
+
+#[test]
+fn hussein_refuses_a_particle_larger_than_its_layer() {
+    // r+ = d u* / (2 nu): 1 mm at 10 m/s is 332 wall units; at 2 m/s, 66.
+    let (status, message) =
+        chance(DEPO_CORRELATION_HUSSEIN, DEPO_SURFACE_WALL, 1e-3, 10.0, 1e-3, 1e-3, 1000.0).unwrap_err();
+    assert_eq!(status, DEPO_ERR_INVALID);
+    assert!(message.contains("diameter[0]") && message.contains("wall units"), "{message}");
+    assert!(chance(DEPO_CORRELATION_HUSSEIN, DEPO_SURFACE_WALL, 1e-3, 2.0, 1e-3, 1e-3, 1000.0).is_ok());
+    // The others take it.
+    assert!(chance(DEPO_CORRELATION_WOOD, DEPO_SURFACE_WALL, 1e-3, 10.0, 1e-3, 1e-3, 1000.0).is_ok());
+}
+
 proptest! {
-    /// From any inputs in range, extreme ones included, a chance in [0, 1], never NaN.
+    /// From any inputs in range, extreme ones included, a chance in [0, 1], never NaN; Hussein
+    /// et al.'s refuses exactly the particles whose radius reaches its layer's 100 wall units.
     #[test]
     fn wall_function_chances_are_probabilities(
-        correlation in 0i32..3,
+        correlation in 0i32..4,
         orientation in 0i32..3,
         dt in 1e-9f64..1e4,
         u in 1e-6f64..1e3,
@@ -928,7 +996,14 @@ proptest! {
         log_d in -9f64..-3.0,
         rho in 1.3f64..2e4,
     ) {
-        let p = chance(correlation, orientation, dt, u, layer, 10f64.powf(log_d), rho).unwrap();
-        prop_assert!((0.0..=1.0).contains(&p), "{}", p);
+        let d = 10f64.powf(log_d);
+        let r_plus = 0.5 * d * u * AIR.density / AIR.viscosity;
+        match chance(correlation, orientation, dt, u, layer, d, rho) {
+            Ok(p) => prop_assert!((0.0..=1.0).contains(&p), "{}", p),
+            Err((status, message)) => {
+                prop_assert!(correlation == DEPO_CORRELATION_HUSSEIN && r_plus >= 100.0 && status == DEPO_ERR_INVALID);
+                prop_assert!(message.contains("wall units"), "{}", message);
+            }
+        }
     }
 }

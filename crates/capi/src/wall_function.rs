@@ -1,10 +1,13 @@
 //! The deposition wall function for host solvers whose meshes do not resolve the near-wall
 //! layer (see the tracker's `wall_function` module, the one source of its formulas).
 
+use depo_tracker::correlations::HUSSEIN_TOP;
 use depo_tracker::wall_function::{deposition_probability, deposition_velocity, Correlation};
 use depo_tracker::{Aerodynamics, Air, Orientation};
 
 use super::{check_disjoint, required, set_last_error, slice, slice_mut, span, Failure, DEPO_ERR_PANIC, DEPO_OK};
+use std::cell::RefCell;
+use std::collections::HashMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Wood (1981): `V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2`, at most 0.13; ducts and channels,
@@ -15,6 +18,17 @@ pub const DEPO_CORRELATION_WOOD: i32 = 0;
 pub const DEPO_CORRELATION_PAPAVERGOS_HEDLEY: i32 = 1;
 /// Lai & Nazaroff (2000): a room's floor, ceiling and walls by orientation, with settling.
 pub const DEPO_CORRELATION_LAI_NAZAROFF: i32 = 2;
+/// Hussein, Smolík, Kerminen & Kulmala (2012, Aerosol Sci. Technol. 46:44-59): by orientation
+/// as Lai & Nazaroff's, with settling and turbophoresis (an Eulerian drift-flux model across
+/// the layer from the particle's radius to `y+ = 100`, where its reference concentration is
+/// taken), for vertical surfaces under stronger turbulence than a room's. Its velocity is an
+/// integral across that layer, far costlier than the others; each thread keeps the velocities
+/// of up to 65536 distinct inputs (friction velocity, diameter, density, orientation, gas and
+/// gravity; then it starts again empty), so a host calling per particle per step pays the
+/// integral once per particle size and friction velocity while these stay the same. A
+/// particle whose radius reaches 100 wall units (`d u* / (2 nu) >= 100`) is outside the
+/// model's layer and refused.
+pub const DEPO_CORRELATION_HUSSEIN: i32 = 3;
 
 /// An upward-facing surface (a floor; gravity towards it).
 pub const DEPO_SURFACE_FLOOR: i32 = 0;
@@ -51,6 +65,7 @@ impl Surface {
             DEPO_CORRELATION_WOOD => Correlation::Wood,
             DEPO_CORRELATION_PAPAVERGOS_HEDLEY => Correlation::PapavergosHedley,
             DEPO_CORRELATION_LAI_NAZAROFF => Correlation::LaiNazaroff,
+            DEPO_CORRELATION_HUSSEIN => Correlation::Hussein,
             other => return Err(Failure::invalid(format!("correlation = {other} is not a DEPO_CORRELATION_*"))),
         };
         let orientation = match orientation {
@@ -89,9 +104,55 @@ impl Surface {
         if !(density.is_finite() && density > self.air.density) {
             return bad("density", density, "is not finite and above the gas's");
         }
-        let aero = Aerodynamics::new(diameter, density, &self.air, self.gravity);
-        Ok(deposition_velocity(self.correlation, &aero, &self.air, friction_velocity, self.orientation))
+        let velocity = || {
+            let aero = Aerodynamics::new(diameter, density, &self.air, self.gravity);
+            deposition_velocity(self.correlation, &aero, &self.air, friction_velocity, self.orientation)
+        };
+        if self.correlation != Correlation::Hussein {
+            return Ok(velocity());
+        }
+        let r_plus = 0.5 * diameter * friction_velocity / self.air.kinematic_viscosity();
+        if r_plus >= HUSSEIN_TOP {
+            return Err(Failure::invalid(format!(
+                "diameter[{i}] = {diameter} at friction_velocity[{i}] = {friction_velocity} is a radius of \
+                 {r_plus} wall units, not below the {HUSSEIN_TOP} of Hussein et al.'s layer"
+            )));
+        }
+        let a = &self.air;
+        let key = [
+            self.orientation as u64,
+            a.temperature.to_bits(),
+            a.pressure.to_bits(),
+            a.density.to_bits(),
+            a.viscosity.to_bits(),
+            self.gravity.to_bits(),
+            friction_velocity.to_bits(),
+            diameter.to_bits(),
+            density.to_bits(),
+        ];
+        Ok(HUSSEIN_CACHE.with(|cache| {
+            let mut cache = cache.borrow_mut();
+            if let Some(&v) = cache.get(&key) {
+                return v;
+            }
+            if cache.len() >= HUSSEIN_CACHE_SIZE {
+                cache.clear();
+            }
+            let v = velocity();
+            cache.insert(key, v);
+            v
+        }))
     }
+}
+
+/// The most inputs whose Hussein et al. velocity a thread keeps (about 100 bytes each); when
+/// full, it starts again empty.
+const HUSSEIN_CACHE_SIZE: usize = 1 << 16;
+
+thread_local! {
+    /// Hussein et al.'s velocities by their inputs' bits (orientation, gas, gravity, friction
+    /// velocity, diameter, density): a pure function, so a hit returns what the integral would.
+    static HUSSEIN_CACHE: RefCell<HashMap<[u64; 9], f64>> = RefCell::new(HashMap::new());
 }
 
 /// The deposition velocity (m/s) that `correlation` gives onto a smooth surface facing
@@ -100,8 +161,9 @@ impl Surface {
 /// wall cell `friction_velocity` (m/s): what an Eulerian wall function multiplies the wall
 /// cell's concentration by. A correlation or orientation that is not a `DEPO_*` value, an air
 /// value that is not finite and positive, a negative gravity, a friction velocity that is not
-/// finite and positive, a diameter outside 1 nm to 1 mm, a density not above the gas's, or
-/// `velocity` overlapping an input is `DEPO_ERR_INVALID` and writes nothing.
+/// finite and positive, a diameter outside 1 nm to 1 mm, a density not above the gas's, with
+/// `DEPO_CORRELATION_HUSSEIN` a radius of 100 wall units or more, or `velocity` overlapping an
+/// input is `DEPO_ERR_INVALID` and writes nothing.
 #[no_mangle]
 pub unsafe extern "C" fn depo_deposition_velocity(
     correlation: i32,

@@ -355,6 +355,72 @@ fn fortran_example_runs() {
     assert!(stdout.contains("e(1 m/s) =  0.73199"), "{stdout}");
 }
 
+/// Hussein et al.'s deposition velocity and chance for the particles of
+/// `tests/wall_function/hussein.*` as the tracker's `wall_function` functions give them, bit
+/// for bit, from the lines a program printed; and the refused particle's status and message.
+fn check_hussein(stdout: &str) {
+    use depo_tracker::wall_function::{deposition_probability, deposition_velocity, Correlation};
+    use depo_tracker::{Aerodynamics, Air, Orientation};
+    let air = Air { temperature: 293.15, pressure: 101_325.0, density: 1.204, viscosity: 1.81e-5 };
+    let mut lines = 0;
+    for line in stdout.lines().filter(|l| l.starts_with("hussein ")) {
+        let w: Vec<f64> = line.split_whitespace().skip(1).map(|x| x.parse().unwrap()).collect();
+        let orientation = [Orientation::Floor, Orientation::Ceiling, Orientation::Wall][w[0] as usize];
+        let (u, d, rho, layer, dt, v, p) = (w[1], w[2], w[3], w[4], w[5], w[6], w[7]);
+        let aero = Aerodynamics::new(d, rho, &air, 9.80665);
+        let expected = deposition_velocity(Correlation::Hussein, &aero, &air, u, orientation);
+        assert_eq!(v.to_bits(), expected.to_bits(), "{line}: Rust gives {expected:e}");
+        let chance = deposition_probability(expected, layer, dt);
+        assert_eq!(p.to_bits(), chance.to_bits(), "{line}: Rust gives {chance:e}");
+        lines += 1;
+    }
+    assert_eq!(lines, 12, "{stdout}");
+    let refused = stdout.lines().find(|l| l.starts_with("refused ")).expect("a refused line");
+    assert!(refused.starts_with("refused 2 -1") && refused.contains("wall units"), "{refused}");
+}
+
+/// Hussein et al.'s wall function from C, C++ (depo.hpp) and Fortran (the module): the
+/// tracker's values, the correlation's constant in each header, and the refusal of a particle
+/// larger than the model's layer.
+#[test]
+fn hussein_s_wall_function_from_c_cpp_and_fortran_is_the_tracker_s() {
+    let dir = out_dir("hussein");
+    let src = root().join("crates/capi/tests/wall_function");
+    if have("cc") {
+        let exe = dir.join("hussein-c");
+        run(link_depo(
+            c_flags(Command::new("cc").args(["-std=c11", &include("crates/capi/include")]))
+                .arg(src.join("hussein.c"))
+                .arg("-o")
+                .arg(&exe),
+        ));
+        check_hussein(&String::from_utf8(run(&mut Command::new(&exe)).stdout).unwrap());
+    }
+    if have("c++") {
+        let exe = dir.join("hussein-cpp");
+        run(link_depo(
+            c_flags(Command::new("c++").args(["-std=c++11", &include("crates/capi/include")]))
+                .arg(src.join("hussein.cpp"))
+                .arg("-o")
+                .arg(&exe),
+        ));
+        check_hussein(&String::from_utf8(run(&mut Command::new(&exe)).stdout).unwrap());
+    }
+    if have("gfortran") {
+        let exe = dir.join("hussein-f");
+        run(link_depo(
+            Command::new("gfortran")
+                .args(["-std=f2018", "-Wall", "-Wextra", "-Werror", "-J"])
+                .arg(&dir)
+                .arg(root().join("crates/capi/fortran/depo.f90"))
+                .arg(src.join("hussein.f90"))
+                .arg("-o")
+                .arg(&exe),
+        ));
+        check_hussein(&String::from_utf8(run(&mut Command::new(&exe)).stdout).unwrap());
+    }
+}
+
 /// The Fortran module's argument checks (`tests/fortran/checks.f90`): wrong sizes, partial
 /// sets of optional arguments and a missing normal return their status and change nothing;
 /// under valgrind too, so that no array is read or written past its end.

@@ -114,7 +114,7 @@ static void wall_function_results(void) {
         diameter[i] = exp(uniform(log(1e-9), log(100e-6)));
         density[i] = uniform(500.0, 8000.0);
     }
-    for (int c = DEPO_CORRELATION_WOOD; c <= DEPO_CORRELATION_LAI_NAZAROFF; c++) {
+    for (int c = DEPO_CORRELATION_WOOD; c <= DEPO_CORRELATION_HUSSEIN; c++) {
         for (int s = DEPO_SURFACE_FLOOR; s <= DEPO_SURFACE_WALL; s++) {
             check(depo_deposition_velocity(c, s, &air, 9.80665, N, ustar, diameter, density, v), "deposition_velocity");
             check(depo_wall_function_probability(c, s, &air, 9.80665, 1e-3, N, ustar, layer, diameter, density, p),
