@@ -1,12 +1,21 @@
 #!/usr/bin/env python3
 """The duct case's report: where the particles of each size went, with Code_Saturne's own
-deposition (every wall contact deposits) and with depo's law (rebound or capture).
+deposition (every wall contact deposits) and with depo's law (rebound or capture); and, given
+the wall-function run, its deposits against the correlation's prediction.
 
-    duct_report.py SINK_RUN DEPO_RUN OUT_DIR
+    duct_report.py SINK_RUN DEPO_RUN [WALL_FUNCTION_RUN] OUT_DIR
 
 reads each run's duct_census.csv (and depo's depo_impacts.csv for the rebounds), prints a
 table, and writes OUT_DIR/duct.csv and the figure OUT_DIR/duct.svg. The fractions are of the
 particles injected per size (8000); their standard errors are binomial, sqrt(f (1 - f) / N).
+
+With WALL_FUNCTION_RUN, its duct_wall_function.csv gives per size the deposits, the number
+the correlation's flux predicts from the particles the wall cells held at each step (the sum
+of their chances, with its binomial variance), and per wall the mean u*, the correlation's
+v_d there and the wall cells' concentration over the duct's. The table sets beside them the
+well-mixed prediction for the duct, 1 - exp(-(sum over walls of v_d x perimeter) L / Q) with
+the duct's L = 2 m, perimeter 0.2 m per wall (0.4 m for the two sides) and Q = 0.04 m^3/s,
+and Code_Saturne's sink walls' deposited fraction; written to OUT_DIR/duct_wall_function.csv.
 """
 import csv
 import math
@@ -95,7 +104,44 @@ def svg(rows, path):
         f.write("\n".join(out) + "\n")
 
 
+# The duct: length (m), each wall's share of the perimeter (m), the air's flow rate (m^3/s).
+LENGTH, PERIMETER, FLOW = 2.0, {"floor": 0.2, "ceiling": 0.2, "sides": 0.4}, 0.2 * 0.2 * 1.0
+
+
+def wall_function(sink_run, wf_run, out):
+    sink = census(sink_run)
+    rows = []
+    with open(os.path.join(wf_run, "duct_wall_function.csv")) as f:
+        for r in csv.DictReader(f):
+            d, n = float(r["diameter"]), int(r["injected"])
+            dep, exp, var = int(r["deposited"]), float(r["expected"]), float(r["expected_variance"])
+            loss = sum(float(r[w + "_vd"]) * PERIMETER[w] for w in WALLS) * LENGTH / FLOW
+            mixed = 1.0 - math.exp(-loss)
+            s = sink[d]
+            sink_f = sum(int(s[w]) for w in WALLS) / int(s["injected"])
+            z = (dep - exp) / math.sqrt(var) if var > 0 else float("nan")
+            rows.append((d * 1e6, n, dep, dep / n, exp / n, math.sqrt(var) / n, z, mixed,
+                         float(r["floor_near_ratio"]), float(r["floor_ustar"]), sink_f))
+    with open(os.path.join(out, "duct_wall_function.csv"), "w") as f:
+        f.write("diameter_um,injected,deposited,fraction,predicted_wall_cells,predicted_error,"
+                "z,predicted_well_mixed,floor_near_ratio,floor_ustar,sink_fraction\n")
+        for r in rows:
+            f.write("%g,%d,%d,%.5f,%.5f,%.5f,%.2f,%.5f,%.3f,%.5f,%.5f\n" % r)
+    print("\nwall function (lai-nazaroff): deposited fraction against the correlation's prediction")
+    print("%8s %8s %18s %18s %6s %11s %9s %10s" % ("d (um)", "deposits", "fraction", "from wall cells",
+                                                 "z", "well-mixed", "C_w/C fl", "CS sink"))
+    for d, n, dep, frac, pred, err, z, mixed, near, ustar, sink_f in rows:
+        print("%8g %8d %9.4f +- %.4f %9.4f +- %.4f %6.2f %11.4f %9.3f %10.4f" % (
+            d, dep, frac, math.sqrt(frac * (1 - frac) / n), pred, err, z, mixed, near, sink_f))
+    print("u* (area-weighted mean of the floor's ustar): %.4f m/s" % rows[0][9])
+    print("wrote", os.path.join(out, "duct_wall_function.csv"))
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    if len(sys.argv) == 4:
+        main(*sys.argv[1:])
+    elif len(sys.argv) == 5:
+        main(sys.argv[1], sys.argv[2], sys.argv[4])
+        wall_function(sys.argv[1], sys.argv[3], sys.argv[4])
+    else:
         sys.exit(__doc__)
-    main(*sys.argv[1:])

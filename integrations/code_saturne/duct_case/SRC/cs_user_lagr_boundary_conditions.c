@@ -1,8 +1,9 @@
 /* Duct: particles of 10, 30 and 100 um (1000 kg/m^3) enter with the air at the inlet, 20 of
    each size per step from step 200 to step 599 (1 s to 3 s, after the flow has crossed the
    duct twice), and leave at the outlet. The walls are either Code_Saturne's own deposition
-   (CS_LAGR_DEPO2: every contact deposits, a perfect sink) or depo's law, as the file
-   `walls` in DATA says: "sink" or "depo" (then with the laws of DATA/depo_zones). */
+   (CS_LAGR_DEPO2: every contact deposits, a perfect sink), depo's law, or depo's deposition
+   wall function, as the file `walls` in DATA says: "sink", "depo" or "wall-function" (the
+   last two with the zones of DATA/depo_zones). */
 
 #include "cs_defs.h"
 
@@ -28,14 +29,18 @@ duct_walls_mode(void)
     char word[16] = "";
     FILE *f = fopen("walls", "r");
     if (f == NULL || fscanf(f, "%15s", word) != 1)
-      bft_error(__FILE__, __LINE__, 0, "duct: DATA/walls must say \"sink\" or \"depo\"\n");
+      bft_error(__FILE__, __LINE__, 0,
+                "duct: DATA/walls must say \"sink\", \"depo\" or \"wall-function\"\n");
     fclose(f);
     if (strcmp(word, "sink") == 0)
       mode = DUCT_SINK;
     else if (strcmp(word, "depo") == 0)
       mode = DUCT_DEPO;
+    else if (strcmp(word, "wall-function") == 0)
+      mode = DUCT_WALL_FUNCTION;
     else
-      bft_error(__FILE__, __LINE__, 0, "duct: DATA/walls says \"%s\", not sink or depo\n", word);
+      bft_error(__FILE__, __LINE__, 0,
+                "duct: DATA/walls says \"%s\", not sink, depo or wall-function\n", word);
   }
   return mode;
 }
@@ -49,7 +54,7 @@ cs_user_lagr_boundary_conditions(const int  bc_type[])
   for (int w = 0; w < 3; w++)
     bcs->zone_type[cs_boundary_zone_by_name(walls[w])->id] = CS_LAGR_DEPO2;
   bcs->zone_type[cs_boundary_zone_by_name("outlet")->id] = CS_LAGR_OUTLET;
-  if (duct_walls_mode() == DUCT_DEPO)
+  if (duct_walls_mode() != DUCT_SINK)
     depo_cs_setup(bcs);
 
   int inlet = cs_boundary_zone_by_name("inlet")->id;

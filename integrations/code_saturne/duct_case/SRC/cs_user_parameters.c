@@ -1,12 +1,17 @@
-/* Duct: k-epsilon turbulence, gravity along -z, 5 ms steps, 1000 steps (5 s). */
+/* Duct: k-epsilon turbulence, gravity along -z, 5 ms steps, 1000 steps (5 s); with depo's
+   wall function, the boundary field of the wall functions' friction velocity it reads. */
 
 #include "cs_defs.h"
 #include "cs_domain.h"
+#include "cs_field.h"
+#include "cs_mesh_location.h"
 #include "cs_parameters.h"
 #include "cs_physical_constants.h"
 #include "cs_prototypes.h"
 #include "cs_time_step.h"
 #include "cs_turbulence_model.h"
+
+#include "duct.h"
 
 BEGIN_C_DECLS
 
@@ -32,6 +37,8 @@ cs_user_parameters(cs_domain_t *domain)
   cs_turb_ref_values_t *ref = cs_get_glob_turb_ref_values();
   ref->uref = 1.0;
   ref->almax = 0.2;
+  if (duct_walls_mode() == DUCT_WALL_FUNCTION)
+    cs_field_find_or_create("ustar", CS_FIELD_PROPERTY, CS_MESH_LOCATION_BOUNDARY_FACES, 1, false);
 }
 
 END_C_DECLS

@@ -5,6 +5,7 @@
 
 #define DUCT_SINK 0
 #define DUCT_DEPO 1
+#define DUCT_WALL_FUNCTION 2
 
 #define DUCT_SIZES 3
 #define DUCT_PER_STEP 20
@@ -14,7 +15,7 @@
 
 static const double duct_diameters[DUCT_SIZES] = {10e-6, 30e-6, 100e-6};
 
-/* DUCT_SINK or DUCT_DEPO, from the file `walls`. */
+/* DUCT_SINK, DUCT_DEPO or DUCT_WALL_FUNCTION, from the file `walls`. */
 int duct_walls_mode(void);
 
 #endif
