@@ -89,6 +89,58 @@ pub fn deposition_velocity(
     }
 }
 
+/// [`deposition_velocity`], kept per thread for Hussein et al.'s correlation, whose velocity
+/// is an integral across the layer (about 0.8 ms, docs/performance-log.md): a run's chunks
+/// of particles of one size, and the walls of one orientation, then integrate it once per
+/// thread rather than once per wall and chunk. The key is the bits of every input the
+/// velocity reads (correlation, orientation, the particle's diameter, diffusivity,
+/// relaxation time and settling speed, the gas's density and viscosity, `u*`), so a hit
+/// returns what the integral would; up to [`VELOCITY_CACHE_SIZE`] inputs, then it starts
+/// again empty. The other correlations are computed each time (they cost less than a lookup).
+#[must_use]
+pub fn deposition_velocity_cached(
+    correlation: Correlation,
+    aero: &Aerodynamics,
+    air: &Air,
+    friction_velocity: f64,
+    orientation: Orientation,
+) -> f64 {
+    if correlation != Correlation::Hussein {
+        return deposition_velocity(correlation, aero, air, friction_velocity, orientation);
+    }
+    let key = [
+        correlation as u64,
+        orientation as u64,
+        aero.diameter.to_bits(),
+        aero.diffusivity.to_bits(),
+        aero.relaxation_time.to_bits(),
+        aero.settling_speed.to_bits(),
+        air.density.to_bits(),
+        air.viscosity.to_bits(),
+        friction_velocity.to_bits(),
+    ];
+    VELOCITIES.with(|cache| {
+        let mut cache = cache.borrow_mut();
+        if let Some(&v) = cache.get(&key) {
+            return v;
+        }
+        if cache.len() >= VELOCITY_CACHE_SIZE {
+            cache.clear();
+        }
+        let v = deposition_velocity(correlation, aero, air, friction_velocity, orientation);
+        cache.insert(key, v);
+        v
+    })
+}
+
+/// The most inputs [`deposition_velocity_cached`] keeps per thread (about 100 bytes each).
+pub const VELOCITY_CACHE_SIZE: usize = 1 << 16;
+
+thread_local! {
+    static VELOCITIES: std::cell::RefCell<std::collections::HashMap<[u64; 9], f64>> =
+        std::cell::RefCell::new(std::collections::HashMap::new());
+}
+
 /// The chance that a particle in a near-wall layer of thickness `layer` (m) throughout a step
 /// of `dt` (s) deposits within it, for deposition velocity `v_d` (m/s):
 /// `1 - exp(-v_d dt / layer)` (module docs). 0 for `v_d = 0`, below 1 for any finite step.
@@ -162,6 +214,39 @@ mod tests {
         assert_eq!(wf.correlation_for(Orientation::Floor), Correlation::LaiNazaroff);
         assert_eq!(WallFunction::new(Correlation::Wood).correlation_for(Orientation::Wall), Correlation::Wood);
         assert_eq!(Correlation::Hussein.name(), "hussein");
+    }
+
+    #[test]
+    fn the_cached_velocity_is_the_velocity_for_every_correlation_and_input() {
+        let air = Air::standard();
+        let correlations =
+            [Correlation::Wood, Correlation::PapavergosHedley, Correlation::LaiNazaroff, Correlation::Hussein];
+        // Twice over: the second pass answers Hussein et al.'s from the cache.
+        for _ in 0..2 {
+            for (d, rho, g, u) in [
+                (5e-6, 1000.0, 9.80665, 0.3),
+                (5e-6, 2500.0, 9.80665, 0.3),
+                (5e-6, 1000.0, 0.0, 0.3),
+                (2e-6, 1000.0, 9.80665, 0.01),
+            ] {
+                let aero = Aerodynamics::new(d, rho, &air, g);
+                for c in correlations {
+                    for o in [Orientation::Floor, Orientation::Wall, Orientation::Ceiling] {
+                        let cached = deposition_velocity_cached(c, &aero, &air, u, o);
+                        let direct = deposition_velocity(c, &aero, &air, u, o);
+                        assert_eq!(cached.to_bits(), direct.to_bits(), "{c:?} {o:?} d {d} rho {rho} g {g} u* {u}");
+                    }
+                }
+            }
+        }
+        // Another gas is another key.
+        let thin = Air { density: 0.6, ..air };
+        let aero = Aerodynamics::new(5e-6, 1000.0, &thin, 9.80665);
+        let v = deposition_velocity_cached(Correlation::Hussein, &aero, &thin, 0.3, Orientation::Wall);
+        assert_eq!(
+            v.to_bits(),
+            deposition_velocity(Correlation::Hussein, &aero, &thin, 0.3, Orientation::Wall).to_bits()
+        );
     }
 
     #[test]

@@ -25,7 +25,7 @@ use super::{Fate, Flyer, Needs, ParticleTally, Prepared, Record, Step, WallTally
 use crate::model::air::Aerodynamics;
 use crate::model::walls::WallBehaviour;
 use crate::physics::noise::particle_rng;
-use crate::physics::wall_function::{deposition_probability, deposition_velocity};
+use crate::physics::wall_function::{deposition_probability, deposition_velocity_cached};
 
 /// Salt of the stream that draws a particle's arrivals at the walls.
 const ARRIVAL_SALT: u64 = 0x9e37_79b9_7f4a_7c15;
@@ -66,8 +66,10 @@ pub(crate) fn track_wall_function(
 }
 
 /// Each wall's chance of an arrival over a step in its layer, for the particle size it was
-/// last computed for (a correlation such as [`crate::correlations::hussein`] integrates
-/// across the layer, too slow to repeat for every particle).
+/// last computed for; a correlation such as [`crate::correlations::hussein`] integrates
+/// across the layer, too slow to repeat for every particle, and its velocity is also kept
+/// per thread across chunks, sizes and walls of one orientation
+/// ([`deposition_velocity_cached`]).
 #[derive(Default)]
 struct Chances {
     /// The diameter (m) and mass (kg) they are for.
@@ -85,7 +87,8 @@ impl Chances {
                 .map(|(wall, _)| {
                     let orientation = wall.orientation();
                     let correlation = wf.function.correlation_for(orientation);
-                    let v_d = deposition_velocity(correlation, aero, &p.scene.air, wf.friction_velocity, orientation);
+                    let v_d =
+                        deposition_velocity_cached(correlation, aero, &p.scene.air, wf.friction_velocity, orientation);
                     deposition_probability(v_d, wf.layer, p.scene.dt)
                 })
                 .collect();
