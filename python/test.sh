@@ -8,7 +8,8 @@
 # that it reuses the dependencies `cargo test --workspace` has already compiled into the same
 # target directory. The C library and the `depo` command that some tests compare with are built
 # here too (quick after `cargo test`). Optional packages the tests use where installed (dask,
-# pandas) go in with DEPO_PY_EXTRAS="dask[distributed] pandas" (as .ci/run sets it); a test
+# pandas, matplotlib) go in with DEPO_PY_EXTRAS="dask[distributed] pandas matplotlib" (as
+# .ci/run sets it); a test
 # of a package DEPO_PY_EXTRAS names fails, rather than skips, where it is not importable.
 set -euo pipefail
 cd "$(dirname "$0")/.."

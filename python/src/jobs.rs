@@ -3,8 +3,7 @@
 //! keys, and fails with the command's one-line messages, naming the parameter instead of the
 //! flag (src/cli/presets.rs, fit.rs, capture.rs; tests/test_jobs.py compares them).
 
-use depo::scene_file::law_entry;
-use depo::text::shown;
+use depo::scene_file::{check_fit, law_entry};
 use depo_wall_model::fit::{fit as fit_law, Exponents, FitReport, Sample};
 use depo_wall_model::theory::{
     dahneke_capture_velocity, effective_modulus, hamaker_well_depth, jkr_capture_velocity, jkr_energy_loss,
@@ -128,7 +127,7 @@ pub fn fit<'py>(
     }
     let exponents = if free_exponents { Exponents::Free { p, q } } else { Exponents::Fixed { p, q } };
     let report = py.detach(|| fit_law(&samples, exponents)).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    check_fit(&report, free_exponents)?;
+    check_fit(&report, free_exponents, "other p and q, or free_exponents=True").map_err(PyValueError::new_err)?;
     let FitReport { params, standard_errors: se, .. } = report;
     let d = PyDict::new(py);
     d.set_item("k", params.k1)?;
@@ -157,42 +156,6 @@ pub fn fit<'py>(
         )?;
     }
     Ok(d)
-}
-
-/// `depo fit`'s check of a converged fit, with its messages (parameters named as here).
-fn check_fit(report: &FitReport, free_exponents: bool) -> PyResult<()> {
-    let (params, se) = (&report.params, &report.standard_errors);
-    let exponents = if free_exponents { "fitted" } else { "fixed" };
-    let values = [
-        ("k", params.k1),
-        ("kappa", params.kappa1),
-        ("vc", params.vc),
-        ("p", params.p),
-        ("q", params.q),
-        ("the standard error of k", se.k1),
-        ("the standard error of kappa", se.kappa1),
-        ("the standard error of vc", se.vc),
-        ("the standard error of p", se.p),
-        ("the standard error of q", se.q),
-        ("the fitting index", report.fitting_index),
-        ("the RMSE", report.rmse),
-    ];
-    if let Some((name, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
-        return Err(PyValueError::new_err(format!(
-            "the fit failed: {name} is {value} (the data do not determine the constants with p = {}, q = {} {exponents})",
-            params.p, params.q
-        )));
-    }
-    if params.vc <= 0.0 {
-        return Err(PyValueError::new_err(format!(
-            "the fit failed: vc = {} m/s is not positive with p = {}, q = {} {exponents}; try other p and q, or \
-             free_exponents=True",
-            shown(params.vc),
-            shown(params.p),
-            shown(params.q)
-        )));
-    }
-    Ok(())
 }
 
 /// `value` if it is finite and positive, else the command's message for `name`.

@@ -181,16 +181,24 @@ def test_the_thread_setting_changes_no_result():
         depo.set_num_threads(0)
 
 
-def test_ctrl_c_stops_a_study_within_a_second():
-    """A subprocess runs the built-in room (minutes of work) and is sent SIGINT: it raises
-    KeyboardInterrupt within a second, and afterwards its process uses no CPU (no thread goes
-    on tracking)."""
+# The built-in room (minutes of work); and 0.2 um particles over 100 hours, each of them
+# seconds of tracking (a chunk of 8 took 7-12 s to stop when runs stopped only between chunks).
+CTRL_C_SCENES = {
+    "built-in": None,
+    "long particle runs": {"particles": {"diameters": [0.2e-6]}, "run": {"duration": 360000.0}},
+}
+
+
+@pytest.mark.parametrize("scene", list(CTRL_C_SCENES))
+def test_ctrl_c_stops_a_study_within_a_second(scene):
+    """A subprocess runs a long room study and is sent SIGINT: it raises KeyboardInterrupt
+    within a second, and afterwards its process uses no CPU (no thread goes on tracking)."""
     child = textwrap.dedent(
-        """
+        f"""
         import sys, time, depo
         print("ready", flush=True)
         try:
-            depo.room()
+            depo.room({CTRL_C_SCENES[scene]!r})
         except KeyboardInterrupt:
             print("interrupted", time.monotonic(), flush=True)
             cpu = time.process_time()

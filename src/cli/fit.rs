@@ -127,7 +127,8 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
         Exponents::Fixed { p: args.p, q: args.q }
     };
     let report = fit(&samples, exponents).map_err(|e| format!("{}: {e}", args.data.display()))?;
-    check_fit(&report, args).map_err(|e| format!("{}: {e}", args.data.display()))?;
+    depo::scene_file::check_fit(&report, args.free_exponents, "other --p and --q, or --free-exponents")
+        .map_err(|e| format!("{}: {e}", args.data.display()))?;
     let FitReport { params, standard_errors: se, .. } = report;
     let out = Output {
         k: params.k1,
@@ -191,45 +192,6 @@ pub fn run(args: &FitArgs) -> Result<(), Error> {
         let series = [Series::markers("data", data), Series::line("fit: e = R (1 - rho)", curve)];
         plot::lines(path, "Fit of Eq. (10)", "|vn| (m/s)", "e", &series, true)?;
         eprintln!("wrote {}", path.display());
-    }
-    Ok(())
-}
-
-/// A fit that converged to something unusable is an error with its reason: a capture velocity
-/// that is not positive (the data do not show capture under these exponents), or an
-/// estimate, standard error or fitting index that is not finite (the data do not determine
-/// the constants, e.g. identical rows or an exponent far from the data's).
-fn check_fit(report: &FitReport, args: &FitArgs) -> Result<(), Error> {
-    let (params, se) = (&report.params, &report.standard_errors);
-    let exponents = if args.free_exponents { "fitted" } else { "fixed" };
-    let values = [
-        ("k", params.k1),
-        ("kappa", params.kappa1),
-        ("vc", params.vc),
-        ("p", params.p),
-        ("q", params.q),
-        ("the standard error of k", se.k1),
-        ("the standard error of kappa", se.kappa1),
-        ("the standard error of vc", se.vc),
-        ("the standard error of p", se.p),
-        ("the standard error of q", se.q),
-        ("the fitting index", report.fitting_index),
-        ("the RMSE", report.rmse),
-    ];
-    if let Some((name, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
-        return Err(format!(
-            "the fit failed: {name} is {value} (the data do not determine the constants with p = {}, q = {} {exponents})",
-            params.p, params.q
-        ));
-    }
-    if params.vc <= 0.0 {
-        return Err(format!(
-            "the fit failed: vc = {} m/s is not positive with p = {}, q = {} {exponents}; try other --p and --q, or \
-             --free-exponents",
-            shown(params.vc),
-            shown(params.p),
-            shown(params.q)
-        ));
     }
     Ok(())
 }

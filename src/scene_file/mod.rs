@@ -30,7 +30,7 @@ use serde::Deserialize;
 
 pub use channel::ChannelScene;
 pub use room::RoomScene;
-pub use walls::law_entry;
+pub use walls::{check_fit, law_entry};
 
 use crate::text::shown;
 

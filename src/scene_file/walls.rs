@@ -2,10 +2,12 @@
 //! its own constants); the faces of `[[furnishings]]` take the same keys.
 
 use depo_tracker::{Geometry, Scene, WallBehaviour};
+use depo_wall_model::fit::FitReport;
 use depo_wall_model::{LawParams, SizeDependence, WallLaw};
 use serde::Deserialize;
 
 use super::{Error, SceneSource};
+use crate::text::shown;
 
 /// A number for a TOML file that reads back as the same `f64`: `{:?}` prints the shortest
 /// digits that round-trip, as `{}` does, but always with a decimal point or an exponent
@@ -28,6 +30,49 @@ pub fn law_entry(surface: &str, params: &LawParams) -> String {
         toml_float(params.p),
         toml_float(params.q)
     )
+}
+
+/// Whether a converged fit can become a scene entry ([`law_entry`]); if not, the one line
+/// saying why, which `depo fit` and the Python package's `fit()` both print: a capture velocity
+/// that is not positive (the data do not show capture under these exponents), or an estimate,
+/// standard error or fitting index that is not finite (the data do not determine the
+/// constants, e.g. identical rows or an exponent far from the data's).
+///
+/// `free_exponents` says whether `p` and `q` were fitted; `retry` names, in the caller's own
+/// terms, what to try instead when `vc` is not positive (the command's
+/// `"other --p and --q, or --free-exponents"`).
+pub fn check_fit(report: &FitReport, free_exponents: bool, retry: &str) -> Result<(), Error> {
+    let (params, se) = (&report.params, &report.standard_errors);
+    let exponents = if free_exponents { "fitted" } else { "fixed" };
+    let values = [
+        ("k", params.k1),
+        ("kappa", params.kappa1),
+        ("vc", params.vc),
+        ("p", params.p),
+        ("q", params.q),
+        ("the standard error of k", se.k1),
+        ("the standard error of kappa", se.kappa1),
+        ("the standard error of vc", se.vc),
+        ("the standard error of p", se.p),
+        ("the standard error of q", se.q),
+        ("the fitting index", report.fitting_index),
+        ("the RMSE", report.rmse),
+    ];
+    if let Some((name, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
+        return Err(format!(
+            "the fit failed: {name} is {value} (the data do not determine the constants with p = {}, q = {} {exponents})",
+            params.p, params.q
+        ));
+    }
+    if params.vc <= 0.0 {
+        return Err(format!(
+            "the fit failed: vc = {} m/s is not positive with p = {}, q = {} {exponents}; try {retry}",
+            shown(params.vc),
+            shown(params.p),
+            shown(params.q)
+        ));
+    }
+    Ok(())
 }
 
 #[derive(Deserialize, Default, Clone)]

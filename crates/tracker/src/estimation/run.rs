@@ -22,8 +22,8 @@
 //! ## Stopping a run
 //! A caller on another thread (a binding that sees Ctrl-C, a user interface) stops a run, or a
 //! whole study, with a [`Cancel`] token it hands in through [`Cancel::watch`]: each chunk of
-//! particles checks the token before it starts, so a run ends within about a chunk's time
-//! (8 particles through the whole run on each thread) with [`SceneError::cancelled`].
+//! particles checks the token before it starts, and each particle every 1024 steps, so a run
+//! ends within milliseconds with [`SceneError::cancelled`], however long its particles' runs.
 
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -152,7 +152,8 @@ fn smallest_weight(scene: &Scene) -> f64 {
 /// The scene validated and prepared for `injection`.
 fn prepare<'a>(scene: &'a Scene, injection: &'a Injection) -> Result<Prepared<'a>, SceneError> {
     scene.validate(injection)?;
-    let prepared = Prepared::new(scene, injection)?;
+    let mut prepared = Prepared::new(scene, injection)?;
+    prepared.stop = Cancel::watched().map(|c| c.0);
     let (limit, message) = if scene.scheme == Scheme::Midpoint {
         (MAX_STEP_GRADIENT_MIDPOINT, "is too long for the turbulence: dt times the steepest gradient of a velocity fluctuation's rms must be at most 0.1 with the midpoint scheme")
     } else {
@@ -169,8 +170,8 @@ type Tracked = (Vec<Record>, Vec<ParticleTally>, Vec<WallTally>);
 
 /// Tracks particles `ids` in chunks of [`CHUNK`] ids (fixed, whatever the thread count):
 /// their records and tallies in id order, and their wall tallies summed in chunk order. A
-/// chunk does not start once the watched [`Cancel`] is cancelled: the range then ends with
-/// [`SceneError::cancelled`].
+/// chunk does not start once the watched [`Cancel`] is cancelled, and the particles in hand
+/// stop (`Prepared::stop`): the range then ends with [`SceneError::cancelled`].
 fn track_range(scene: &Scene, prepared: &Prepared<'_>, ids: std::ops::Range<usize>) -> Result<Tracked, SceneError> {
     let wall_count = prepared.surfaces.len();
     let window = prepared.window;
@@ -200,7 +201,8 @@ fn track_range(scene: &Scene, prepared: &Prepared<'_>, ids: std::ops::Range<usiz
             Some((records, particles, tally))
         })
         .collect();
-    let chunks = chunks.ok_or_else(SceneError::cancelled)?;
+    // Cancelled while chunks ran: their particles stopped short of the run's end.
+    let chunks = chunks.filter(|_| !stopped()).ok_or_else(SceneError::cancelled)?;
     let mut records = Vec::with_capacity(ids.len());
     let mut particles = Vec::with_capacity(ids.len());
     let mut tallies = vec![WallTally::default(); wall_count];

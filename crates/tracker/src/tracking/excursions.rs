@@ -332,6 +332,9 @@ pub(crate) fn run_with_excursions<
     });
     let mut inside = zone(p, excursions, &flyer) == Zone::Inside;
     for n in 0..flyer.end {
+        if p.stopped_at(n) {
+            break; // an incomplete record, which the stopped run discards
+        }
         let t0 = n as f64 * dt;
         match flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, tally) {
             Step::Left(fate, t, at) => {

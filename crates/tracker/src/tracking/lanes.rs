@@ -106,7 +106,10 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
 
     // Some lane is empty (and may take the next particle).
     let mut vacant = true;
-    loop {
+    for round in 0.. {
+        if p.stopped_at(round) {
+            return Vec::new(); // the stopped run discards its records
+        }
         // Empty lanes take the next particles.
         for l in (0..WIDTH).filter(|_| vacant) {
             if lanes[l].is_none() && next < ids.end {

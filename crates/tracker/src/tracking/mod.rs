@@ -68,6 +68,7 @@
 //! `contacts` the wall contacts within a step, and `lanes` the same loop for four particles
 //! side by side.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use depo_wall_model::energy::EnergyLoss;
@@ -120,6 +121,13 @@ pub const MAX_CONTACTS: usize = 32;
 /// Steps whose normal variates are made in one block (a multiple of four variates for any
 /// scene).
 const STEPS_PER_BLOCK: usize = 16;
+
+/// Steps between two looks at [`Prepared::stop`] in a particle's loop. A cancelled run then
+/// stops within this many steps of the particles in hand (milliseconds), not when they have
+/// been tracked through the whole run, which for slowly depositing particles in a long run
+/// takes seconds per particle. One relaxed atomic load per so many steps costs nothing
+/// measurable.
+pub(crate) const STOP_CHECK_STEPS: usize = 1024;
 /// Bisection steps for a contact time (to well below 1e-12 of the step).
 const BISECTIONS: usize = 48;
 
@@ -238,6 +246,10 @@ pub(crate) struct Prepared<'a> {
     /// The top of the near-floor layer whose airborne time a record keeps, m
     /// ([`NEAR_FLOOR_SHARE`] of the height).
     pub near_floor: f64,
+    /// Set when the run is to stop early (its caller cancelled it): each particle loop looks
+    /// at it every [`STOP_CHECK_STEPS`] steps ([`Prepared::stopped_at`]) and ends at once,
+    /// leaving its particles' records incomplete, for the run to discard. `None`: never.
+    pub stop: Option<Arc<AtomicBool>>,
 }
 
 /// A wall function prepared for a run ([`crate::wall_function`]).
@@ -328,7 +340,15 @@ impl<'a> Prepared<'a> {
             coarse: None,
             wall_function,
             near_floor: NEAR_FLOOR_SHARE * size[2],
+            stop: None,
         })
+    }
+
+    /// Whether a particle loop at step `n` is to end early: [`Prepared::stop`] is set, looked
+    /// at on every [`STOP_CHECK_STEPS`]-th step only.
+    #[inline(always)]
+    pub fn stopped_at(&self, n: usize) -> bool {
+        n % STOP_CHECK_STEPS == 0 && self.stop.as_ref().is_some_and(|s| s.load(Ordering::Relaxed))
     }
 }
 
@@ -869,6 +889,9 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     let dt = p.scene.dt;
     let mut flyer = Flyer::inject(p, id, TURB, BROWN);
     for n in 0..flyer.end {
+        if p.stopped_at(n) {
+            break; // an incomplete record, which the stopped run discards
+        }
         if let Step::Left(fate, t, at) = flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, tally) {
             return flyer.record(fate, n as f64 * dt + t, at, n as u64 + 1);
         }

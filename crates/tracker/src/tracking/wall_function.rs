@@ -162,6 +162,9 @@ fn run_with_wall_function<
     let mut layer_time = 0.0;
     let mut ended: Option<Record> = None;
     'steps: for n in 0..flyer.end {
+        if p.stopped_at(n) {
+            break; // an incomplete record, which the stopped run discards
+        }
         if let Step::Left(fate, t, at) = flyer.step::<BROWN, TURB, FINITE_RE, EULER, LIFT>(p, n, stepped) {
             ended = Some(flyer.record(fate, n as f64 * dt + t, at, n as u64 + 1));
             break;
