@@ -969,20 +969,38 @@ fn room_reports_furnishings() {
     let mapped: u64 =
         map.lines().filter(|l| !l.starts_with('#')).flat_map(|l| l.split(',')).map(|c| c.parse::<u64>().unwrap()).sum();
     assert_eq!(mapped, rows[0]["faces"][1]["deposited"].as_u64().unwrap());
-    // The maps drawn: the room's six surfaces and each box's top, each captioned with its
-    // deposits in all, as the JSON counts them.
+    // The maps drawn: the room's six surfaces and each box's top, each captioned with its grid
+    // (or, without a deposit, its bound), their cells the deposition velocity of the
+    // study's estimator under a colour bar with its unit.
     let figure = std::fs::read_to_string(plots.join("room-map-10um.svg")).unwrap();
-    let caption = |name: &str, n: u64| format!("{name} ({n} deposit{})", if n == 1 { "" } else { "s" });
-    let on_top = rows[0]["faces"][1]["deposited"].as_u64().unwrap();
-    assert!(figure.contains(&caption("table.top", on_top)), "{figure}");
-    assert!(figure.contains(&caption("floor", size["deposited"]["floor"].as_u64().unwrap())), "{figure}");
-    for wall in ["ceiling", "x0", "x1", "y0", "y1", "shelf.top"] {
+    for wall in ["floor", "ceiling", "x0", "x1", "y0", "y1", "table.top", "shelf.top"] {
         assert!(figure.contains(&format!("\n{wall} (")), "{wall} in {figure}");
     }
     assert!(!figure.contains("table.bottom"), "only the tops are drawn");
     // The boxes' footprints outlined on the floor, under a colour bar with its unit.
     assert!(figure.contains("\ntable\n") && figure.contains("\nshelf\n"), "{figure}");
-    assert!(figure.contains("deposits per m^2"), "{figure}");
+    assert!(figure.contains("deposition velocity (m/s)"), "{figure}");
+    // Its CSV: every surface's cells, which integrated over a surface give the surface's
+    // figure in the JSON (the same estimator), here the floor's and the table top's.
+    let flux = std::fs::read_to_string(plots.join("room-flux-10um.csv")).unwrap();
+    let integrated = |surface: &str| -> f64 {
+        flux.lines()
+            .filter(|l| l.starts_with(&format!("{surface},")))
+            .map(|l| {
+                let c: Vec<f64> = l.split(',').skip(1).filter_map(|c| c.parse().ok()).collect();
+                // row from, to; column from, to; v_d
+                c[4] * (c[1] - c[0]) * (c[3] - c[2])
+            })
+            .sum()
+    };
+    let floor = size["floor"]["value"].as_f64().unwrap();
+    assert!(
+        (integrated("floor") / 12.0 - floor).abs() < 1e-9 * floor,
+        "{} against {floor}",
+        integrated("floor") / 12.0
+    );
+    let top = rows[0]["top"]["value"].as_f64().unwrap();
+    assert!((integrated("table.top") / 0.96 - top).abs() < 1e-9 * top, "{} against {top}", integrated("table.top"));
     // The furnishings beside the room's surfaces, and the ventilated room's C_in/C_out.
     let deposition = std::fs::read_to_string(plots.join("room-deposition.svg")).unwrap();
     assert!(deposition.contains("table (all faces) (depo, +- 1 s.e.)"), "{deposition}");

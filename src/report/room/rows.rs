@@ -6,6 +6,7 @@
 use depo_tracker::filtration::Filtration;
 use depo_tracker::furnishing::FACE_NAMES;
 use depo_tracker::geometry::in_plane_axes;
+use depo_tracker::maps::FluxMap;
 use depo_tracker::steady::{Source, NOT_WELL_MIXED};
 use depo_tracker::studies::{RoomPoint, RoomStudy, MAP_BINS};
 use depo_tracker::{binomial_error, DecayCurve, Estimate, Scene};
@@ -120,6 +121,10 @@ pub struct Row {
     pub furnishings: Vec<FurnishingRow>,
     /// Each surface's deposition map: the tracked particles' deposits over the run, per cell.
     pub maps: Vec<SurfaceMap>,
+    /// Each surface's deposition velocity per cell, from the study's estimator (the figures'
+    /// maps and their CSV files; not in the JSON, whose `maps` are the counts).
+    #[serde(skip)]
+    pub flux_maps: Vec<Option<FluxMap>>,
 }
 
 /// One surface's deposition map for one size, as the JSON, the CSV files and the figure give
@@ -529,5 +534,6 @@ pub(super) fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtr
             })
             .collect(),
         maps: surface_maps(scene, p),
+        flux_maps: p.flux_maps.clone(),
     }
 }

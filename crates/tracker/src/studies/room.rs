@@ -3,6 +3,7 @@
 
 use crate::estimation::allocation::{self, Figure};
 use crate::estimation::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
+use crate::estimation::maps::FluxMap;
 use crate::estimation::run::{run, run_more, Balance, Estimate, Run};
 use crate::model::error::SceneError;
 use crate::model::excursions::{crossing_class, CROSSING_CLASSES};
@@ -149,6 +150,11 @@ pub struct RoomPoint {
     /// the order x, y, z (rows, columns): the floor's over x and y, the `x0`/`x1` walls' over
     /// y and z; a furnishing face's over the box's extent.
     pub maps: Vec<Vec<u32>>,
+    /// Each surface's deposition velocity per cell from the run's own estimator (the weighted
+    /// deposits and exposure of the averaging window, as `floor`, `ceiling`, `walls` and
+    /// `furnishings` count them), on the grid [`Run::resolved_flux_map`] chooses, in id order
+    /// as `maps`; `None` for the wall function's walls (their deposits have no place).
+    pub flux_maps: Vec<Option<FluxMap>>,
     /// Deposited count and mass (kg) of the tracked particles over the whole run onto the
     /// room's floor, ceiling and vertical walls (the furnishings' faces are in `furnishings`):
     /// with those and `balance`'s exhausted and airborne, the whole release, exactly.
@@ -504,6 +510,17 @@ impl RoomStudy {
                         Some(k) => {
                             let b = &scene.furnishings[k];
                             result.deposition_map_within(w.id, b.low, b.high, MAP_BINS)
+                        }
+                    })
+                    .collect(),
+                flux_maps: result
+                    .walls
+                    .iter()
+                    .map(|w| match w.furnishing {
+                        None => result.resolved_flux_map(w.id, [0.0; 3], size),
+                        Some(k) => {
+                            let b = &scene.furnishings[k];
+                            result.resolved_flux_map(w.id, b.low, b.high)
                         }
                     })
                     .collect(),
