@@ -222,6 +222,13 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
             };
             notes.push(format!("fitted beta {beta} /h"));
         }
+        if let Some(f) = &r.release_fit {
+            notes.push(format!(
+                "gone before the window; fitted from t = 0 to {} s: beta {} /h",
+                significant(f.window_s[1], 2),
+                rate_cell(&f.beta_per_hour)
+            ));
+        }
         if a > 0.0 {
             series.push(ventilation("ventilation"));
         }

@@ -8,6 +8,7 @@ use depo_tracker::studies::RoomStudy;
 use depo_tracker::{Flow, Geometry};
 
 use super::distribution::{DistributionReport, MassUnit, Part, PM_DEFINITION};
+use super::figures::significant;
 use super::resolution::{particles_to_resolve, two_figures_up, RESOLVABLE, RESOLVED_ERROR};
 use super::rows::{source_label, Share};
 use super::{rate_cell, Measured, RoomResult, Row};
@@ -327,7 +328,15 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
                 f.z.map_or("-".to_string(), |z| format!("{z:.1}")),
                 format!("{:.0}-{:.0}", f.window_s[0], f.window_s[1]),
             ),
-            None => ("no fit".to_string(), "-".to_string(), "-".to_string()),
+            None => match &r.release_fit {
+                // Gone before the window: fitted from the release on.
+                Some(f) => (
+                    format!("{} ^", fitted_cell(&f.beta_per_hour)),
+                    f.z.map_or("-".to_string(), |z| format!("{z:.1}")),
+                    format!("{}-{}", significant(f.window_s[0], 2), significant(f.window_s[1], 2)),
+                ),
+                None => ("none (too few particles)".to_string(), "-".to_string(), "-".to_string()),
+            },
         };
         let release = &r.release;
         let pct = |s: &Share| format!("{:.1}", 100.0 * s.share);
@@ -354,6 +363,13 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
         "The curve counts the tracked particles, which leave the air by their own deposits: where deposition \
          is rare it resolves beta far less well than the study's excursions (compare the errors)."
     );
+    if rows.iter().any(|r| r.release_fit.is_some()) {
+        outln!(
+            o,
+            "^ gone before the window opened: fitted from the release (t = 0) to the last time {MIN_AIRBORNE} particles were \
+             airborne, how fast the release went rather than a well-mixed room's loss rate."
+        );
+    }
     let apart = rows.iter().filter_map(|r| r.decay_fit.as_ref()?.z).any(|z| z.abs() > 3.0);
     if openings && apart {
         outln!(

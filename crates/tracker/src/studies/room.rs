@@ -172,6 +172,10 @@ pub struct RoomPoint {
     /// The loss rate fitted to it as decay experiments fit theirs, and `beta` from it with
     /// the air-exchange rate taken off; `None` when fewer than 3 sample times qualify.
     pub decay_fit: Option<DecayFit>,
+    /// Where `decay_fit` has no fit (every particle gone before the window, or too soon for
+    /// its sample times): the release's decay fitted from `t = 0` on a curve of its own time
+    /// scale ([`Run::release_decay`]), its window and rate.
+    pub release_fit: Option<DecayFit>,
     /// Where the tracked particles are at the end of the run (with ventilation, the exhausted
     /// ones too): the mass balance a size distribution's is summed from.
     pub balance: Balance,
@@ -483,6 +487,10 @@ impl RoomStudy {
             });
             let decay = result.decay_curve(DECAY_INTERVALS);
             let decay_fit = result.decay_fit(&decay, scene.exchange_rate());
+            let release_fit = match decay_fit {
+                None => result.release_decay(DECAY_INTERVALS, scene.exchange_rate()).map(|(_, f)| f),
+                Some(_) => None,
+            };
             points.push(RoomPoint {
                 diameter: d,
                 floor: v(Orientation::Floor),
@@ -555,6 +563,7 @@ impl RoomStudy {
                 }),
                 decay,
                 decay_fit,
+                release_fit,
                 balance,
                 averaged_from: scene.average_from,
                 deposited_by: [0.5, 0.9].map(|share| deposited_by(&result.records, share)),
