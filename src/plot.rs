@@ -529,28 +529,72 @@ pub fn bars(path: &Path, title: &str, y_label: &str, groups: &[&str], series: &[
     Ok(())
 }
 
-/// One panel of [`maps`]: a named grid of counts, row `i` the `i`-th band from the bottom along
+/// One cell of a [`MapPanel`]: its value (0 for none) and whether it is resolved.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapCell {
+    pub value: f64,
+    pub resolved: bool,
+}
+
+/// One panel of [`maps`]: a named grid of cells, row `i` the `i`-th band from the bottom along
 /// the vertical axis `axes[0]`, column `j` the `j`-th along the horizontal axis `axes[1]`,
-/// each axis `(name, low, high)` in m; and outlines drawn over it, each a name and its
-/// corners `[(horizontal, vertical); 2]` in m (an opening in the surface, a box on it).
+/// each axis `(name, low, high)` in m, or no grid and a note why; the caption's detail (its
+/// cells' size); and outlines drawn over it, each a name and its corners
+/// `[(horizontal, vertical); 2]` in m (an opening in the surface, a box on it).
 pub struct MapPanel {
     pub name: String,
-    pub cells: Vec<Vec<u32>>,
+    pub detail: String,
+    pub cells: Result<Vec<Vec<MapCell>>, String>,
     pub axes: [(&'static str, f64, f64); 2],
     pub outlines: Vec<(String, [(f64, f64); 2])>,
 }
 
-/// The map's shade for the share `t` (0 to 1) of its largest value: white to dark blue.
+/// The colour of the share `t` (0 to 1) of a map's logarithmic scale: viridis, dark blue to
+/// yellow (its anchors every quarter, linear between), which reads in grey print too.
 fn shade(t: f64) -> RGBColor {
-    let mix = |full: u8| (255.0 - t.clamp(0.0, 1.0) * (255.0 - f64::from(full))).round() as u8;
-    RGBColor(mix(0x08), mix(0x30), mix(0x6b))
+    const ANCHORS: [(f64, f64, f64); 5] =
+        [(68.0, 1.0, 84.0), (59.0, 82.0, 139.0), (33.0, 145.0, 140.0), (94.0, 201.0, 98.0), (253.0, 231.0, 37.0)];
+    let x = t.clamp(0.0, 1.0) * 4.0;
+    let k = (x.floor() as usize).min(3);
+    let f = x - k as f64;
+    let (a, b) = (ANCHORS[k], ANCHORS[k + 1]);
+    let mix = |p: f64, q: f64| (p + f * (q - p)).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
+/// The shade of an unresolved cell in the legend (a cell's own is its colour, paler, hatched).
+const UNRESOLVED: RGBColor = RGBColor(0xc8, 0xc8, 0xc8);
+
+/// Diagonal hatching over the pixel box `[(x0, y0), (x1, y1)]` (top left, bottom right), a line
+/// every `every` pixels: one path, down and up across the box.
+fn hatching((x0, y0): (i32, i32), (x1, y1): (i32, i32), every: i32) -> PathElement<(i32, i32)> {
+    let (w, h) = (x1 - x0, y1 - y0);
+    let mut points = Vec::new();
+    let mut k = every;
+    // Lines x + y = const, from the bottom edge or left edge to the top edge or right edge.
+    while k < w + h {
+        let start = if k <= h { (x0, y0 + k) } else { (x0 + k - h, y1) };
+        let end = if k <= w { (x0 + k, y0) } else { (x1, y0 + k - w) };
+        if points.len() % 4 == 0 {
+            points.extend([start, end]);
+        } else {
+            points.extend([end, start]);
+        }
+        k += every;
+    }
+    PathElement::new(points, RGBColor(0x70, 0x70, 0x70).stroke_width(1))
+}
+
+/// The decades a map's colour scale spans below its largest value.
+const MAP_DECADES: f64 = 3.0;
+
 /// Draws `panels` side by side, three to a row, each to scale (a metre as long across as up),
-/// each cell shaded by its deposits per m² on one linear scale for all (white for none,
-/// darkest for the most), with a colour bar below, into the SVG file `path`. Each panel's
-/// caption names the surface and its deposits in all; its outlines are drawn in red.
-pub fn maps(path: &Path, title: &str, panels: &[MapPanel]) -> Result<(), Error> {
+/// each resolved cell coloured by its value on one logarithmic scale for all (`unit` names
+/// it), from the largest resolved value down [`MAP_DECADES`] decades or to the smallest,
+/// whichever is nearer; cells below the scale take its lowest colour, unresolved ones grey,
+/// empty ones white. A colour bar with its decades labelled goes below, with the legend; each
+/// panel's caption names the surface and its detail; its outlines are drawn in red.
+pub fn maps(path: &Path, title: &str, unit: &str, panels: &[MapPanel]) -> Result<(), Error> {
     const PANEL: (u32, u32) = (300, 260);
     const CAPTION: u32 = 22;
     const MARGIN: u32 = 8;
@@ -558,27 +602,35 @@ pub fn maps(path: &Path, title: &str, panels: &[MapPanel]) -> Result<(), Error> 
     let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
     let columns = panels.len().clamp(1, 3) as u32;
     let rows = panels.len().div_ceil(3).max(1) as u32;
-    // Deposits per m² of each cell.
-    let per_area = |p: &MapPanel| {
-        let [(_, d0, d1), (_, a0, a1)] = p.axes;
-        let n = p.cells.len().max(1) as f64;
-        let m = p.cells.first().map_or(1, Vec::len).max(1) as f64;
-        ((d1 - d0) / n * (a1 - a0) / m).max(f64::MIN_POSITIVE)
+    let resolved = || {
+        panels
+            .iter()
+            .filter_map(|p| p.cells.as_ref().ok())
+            .flat_map(|c| c.iter().flatten())
+            .filter(|c| c.resolved && c.value > 0.0)
+            .map(|c| c.value)
     };
-    let most = panels
-        .iter()
-        .flat_map(|p| p.cells.iter().flatten().map(move |&c| f64::from(c) / per_area(p)))
-        .fold(0.0f64, f64::max);
-    let most = if most > 0.0 { most } else { 1.0 };
-    let width = columns * PANEL.0;
-    let root = SVGBackend::new(path, (width, 40 + rows * PANEL.1 + 50)).into_drawing_area();
+    let most = resolved().fold(0.0f64, f64::max);
+    let least = resolved().fold(f64::INFINITY, f64::min);
+    // The scale's ends, in decades: the resolved values' range, at most MAP_DECADES, at least
+    // one decade about its middle (so that cells' noise of tens of percent does not fill it).
+    let (bottom, top) = if most > 0.0 {
+        let (top, bottom) = (most.log10(), least.log10().max(most.log10() - MAP_DECADES));
+        let middle = (top + bottom) / 2.0;
+        (bottom.min(middle - 0.5), top.max(middle + 0.5))
+    } else {
+        (-1.0, 0.0)
+    };
+    let share = |v: f64| (v.log10() - bottom) / (top - bottom);
+    let width = (columns * PANEL.0).max(900);
+    let root = SVGBackend::new(path, (width, 40 + rows * PANEL.1 + 70)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let (head, rest) = root.split_vertically(40);
-    let centred = TextStyle::from(("sans-serif", 20).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
+    let centred = TextStyle::from(("sans-serif", 18).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
     head.draw(&Text::new(title, ((width / 2) as i32, 20), centred)).map_err(|e| fail(&e))?;
     let (grid, foot) = rest.split_vertically(rows * PANEL.1);
-    // The colour bar: white to the darkest shade, 0 to the most deposits per m².
-    let (bar_x, bar_w): (i32, i32) = (40, 240);
+    // The colour bar, its decades labelled, and the legend of the other shades.
+    let (bar_x, bar_w): (i32, i32) = (40, 300);
     for k in 0..bar_w {
         let t = f64::from(k) / f64::from(bar_w - 1);
         let x = bar_x + k;
@@ -586,19 +638,40 @@ pub fn maps(path: &Path, title: &str, panels: &[MapPanel]) -> Result<(), Error> 
     }
     foot.draw(&Rectangle::new([(bar_x, 8), (bar_x + bar_w, 22)], BLACK.stroke_width(1))).map_err(|e| fail(&e))?;
     let under = TextStyle::from(("sans-serif", 12).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
-    foot.draw(&Text::new("0", (bar_x, 26), under.clone())).map_err(|e| fail(&e))?;
-    let top = tick(most);
-    foot.draw(&Text::new(top.as_str(), (bar_x + bar_w, 26), under)).map_err(|e| fail(&e))?;
+    // Ticks at the scale's ends, and between them at 1, 2 and 5 times a power of ten (only
+    // the powers over more than two decades) clear of the ends.
+    let inner = |v: &f64| (bottom + 0.1..=top - 0.1).contains(&v.log10());
+    let mut ticks: Vec<f64> = (bottom.floor() as i32..=top.ceil() as i32)
+        .flat_map(|k| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(k)))
+        .filter(|v| inner(v) && (top - bottom <= 2.0 || (v.log10() - v.log10().round()).abs() < 1e-9))
+        .collect();
+    ticks.extend([10f64.powf(bottom), 10f64.powf(top)]);
+    for v in ticks {
+        let x = bar_x + (f64::from(bar_w) * share(v)).round() as i32;
+        foot.draw(&PathElement::new(vec![(x, 22), (x, 26)], BLACK.stroke_width(1))).map_err(|e| fail(&e))?;
+        foot.draw(&Text::new(tick(v), (x, 28), under.clone())).map_err(|e| fail(&e))?;
+    }
     let note = TextStyle::from(("sans-serif", 13).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
-    let scale = "deposits per m^2 (one scale for every surface); red: openings and furnishings";
-    foot.draw(&Text::new(scale, (bar_x + bar_w + 25, 15), note)).map_err(|e| fail(&e))?;
+    foot.draw(&Text::new(unit, (bar_x + bar_w + 20, 15), note.clone())).map_err(|e| fail(&e))?;
+    let (swatch_y, mut x) = (52, bar_x);
+    for (fill, text) in [
+        (UNRESOLVED, "hatched, paler: unresolved (relative standard error above 30 %)"),
+        (WHITE, "no deposit"),
+        (PALETTE[1], "openings and furnishings"),
+    ] {
+        let outline = if fill == PALETTE[1] { fill } else { BLACK };
+        foot.draw(&Rectangle::new([(x, swatch_y - 6), (x + 14, swatch_y + 6)], fill.filled())).map_err(|e| fail(&e))?;
+        foot.draw(&Rectangle::new([(x, swatch_y - 6), (x + 14, swatch_y + 6)], outline.stroke_width(1)))
+            .map_err(|e| fail(&e))?;
+        foot.draw(&Text::new(text, (x + 20, swatch_y), note.clone())).map_err(|e| fail(&e))?;
+        x += 20 + 7 * text.len() as i32 + 20;
+    }
     let areas = grid.split_evenly((rows as usize, columns as usize));
-    let caption = TextStyle::from(("sans-serif", 15).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
+    let caption = TextStyle::from(("sans-serif", 14).into_font()).pos(Pos::new(HPos::Center, VPos::Center));
     let label = TextStyle::from(("sans-serif", 11).into_font()).pos(Pos::new(HPos::Left, VPos::Top));
     for (panel, area) in panels.iter().zip(&areas) {
-        let total: u64 = panel.cells.iter().flatten().map(|&c| u64::from(c)).sum();
         let [(down, d0, d1), (across, a0, a1)] = panel.axes;
-        let text = format!("{} ({total} deposit{})", panel.name, plural(total as usize));
+        let text = format!("{} ({})", panel.name, panel.detail);
         area.draw(&Text::new(text, ((PANEL.0 / 2) as i32, (CAPTION / 2) as i32), caption.clone()))
             .map_err(|e| fail(&e))?;
         let (_, body) = area.split_vertically(CAPTION);
@@ -628,18 +701,42 @@ pub fn maps(path: &Path, title: &str, panels: &[MapPanel]) -> Result<(), Error> 
             .y_label_formatter(&|v| tick(*v))
             .draw()
             .map_err(|e| fail(&e))?;
-        let n = panel.cells.len().max(1);
-        let m = panel.cells.first().map_or(1, Vec::len).max(1);
-        let (dd, da) = ((d1 - d0) / n as f64, (a1 - a0) / m as f64);
-        let cell_area = per_area(panel);
-        chart
-            .draw_series(panel.cells.iter().enumerate().flat_map(|(i, row)| {
-                row.iter().enumerate().filter(|(_, &c)| c > 0).map(move |(j, &c)| {
-                    let (y, x) = (d0 + i as f64 * dd, a0 + j as f64 * da);
-                    Rectangle::new([(x, y), (x + da, y + dd)], shade(f64::from(c) / cell_area / most).filled())
-                })
-            }))
-            .map_err(|e| fail(&e))?;
+        match &panel.cells {
+            Ok(cells) => {
+                let n = cells.len().max(1);
+                let m = cells.first().map_or(1, Vec::len).max(1);
+                let (dd, da) = ((d1 - d0) / n as f64, (a1 - a0) / m as f64);
+                let filled = |resolved: bool| {
+                    cells.iter().enumerate().flat_map(move |(i, row)| {
+                        row.iter()
+                            .enumerate()
+                            .filter(move |(_, c)| c.value > 0.0 && c.resolved == resolved)
+                            .map(move |(j, c)| ((d0 + i as f64 * dd, a0 + j as f64 * da), shade(share(c.value))))
+                    })
+                };
+                let solid =
+                    filled(true).map(|((y, x), fill)| Rectangle::new([(x, y), (x + da, y + dd)], fill.filled()));
+                chart.draw_series(solid).map_err(|e| fail(&e))?;
+                // An unresolved cell: its colour paler, hatched.
+                for ((y, x), fill) in filled(false) {
+                    chart
+                        .draw_series([Rectangle::new([(x, y), (x + da, y + dd)], fill.mix(0.45).filled())])
+                        .map_err(|e| fail(&e))?;
+                    let (px0, py1) = chart.backend_coord(&(x, y));
+                    let (px1, py0) = chart.backend_coord(&(x + da, y + dd));
+                    let hatch = hatching((px0, py0), (px1, py1), 7);
+                    root.draw(&hatch).map_err(|e| fail(&e))?;
+                }
+                // The surface's outline, so that a white (empty) map still shows its extent.
+                chart
+                    .draw_series([Rectangle::new([(a0, d0), (a1, d1)], BLACK.stroke_width(1))])
+                    .map_err(|e| fail(&e))?;
+            }
+            Err(why) => {
+                let (px, py) = chart.backend_coord(&(a0, d1));
+                root.draw(&Text::new(why.as_str(), (px + 4, py + 4), label.clone())).map_err(|e| fail(&e))?;
+            }
+        }
         let red = PALETTE[1];
         for (name, [(x0, y0), (x1, y1)]) in &panel.outlines {
             chart.draw_series([Rectangle::new([(*x0, *y0), (*x1, *y1)], red.stroke_width(2))]).map_err(|e| fail(&e))?;

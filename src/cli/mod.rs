@@ -59,7 +59,17 @@ enum Command {
     /// below 1e-30 m/s (the ceiling for coarse particles), no deposition. "near floor": under
     /// a steady source spread over the room, the concentration in the lowest tenth of its
     /// height over the room's mean; marked ~ above 1.2, where the room is not well mixed for
-    /// the size and its v_d and beta are not a well-mixed room's. The third table is the steady
+    /// the size and its v_d and beta are not a well-mixed room's. * unresolved: no deposit
+    /// event, or, where Lai & Nazaroff give at least 1e-7 m/s, a relative standard error or a
+    /// share given up above 5 %; "To resolve to 5 %" then says about how many particles would
+    /// (an error falls as one over the square root of the particles). + every particle left
+    /// the air before the averaging window opened: that size's figures are averaged over the
+    /// release from t = 0 (what became of it, not a well-mixed room's rates; v_d over the window
+    /// does not exist, nothing being airborne there), its decay fitted from t = 0 (^ in the
+    /// second table), and the times by which half and 90 % had deposited are in the second
+    /// table. The second table reads the release as a decay experiment; its curve counts the
+    /// tracked particles, which leave the air by their own deposits: where deposition is rare
+    /// it resolves beta far less well than the study's excursions. The third table is the steady
     /// state under a continuous source entering where a scene's [source] says (indoor,
     /// infiltration or a supply opening; examples/room.toml).
     Room(room::RoomArgs),

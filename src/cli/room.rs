@@ -19,11 +19,12 @@ pub struct RoomArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     format: Format,
-    /// Directory for the figures and maps, written unless --no-plot (54 files for the built-in
+    /// Directory for the figures and maps, written unless --no-plot (61 files for the built-in
     /// room, more with furnishings): room-deposition.svg, room-beta.svg, room-decay.svg and
     /// the decay curves room-decay.csv; room-steady.svg, the steady state under the scene's
-    /// continuous source ([source] in a scene file); each size's deposition maps
-    /// (room-map-SIZEum.svg and room-map-SURFACE-SIZEum.csv); room-indoor-outdoor.svg when
+    /// continuous source ([source] in a scene file); each size's deposition velocity per cell
+    /// of every surface (room-map-SIZEum.svg, room-flux-SIZEum.csv) and the tracked particles'
+    /// deposits per cell (room-map-SURFACE-SIZEum.csv); room-indoor-outdoor.svg when
     /// ventilated; room-distribution.svg and room-pm.svg with a size distribution.
     #[arg(long, default_value = "depo-room")]
     plot: PathBuf,

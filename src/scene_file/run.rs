@@ -121,8 +121,8 @@ pub(super) fn check_count(src: &SceneSource, key: &str, lines: &[&str], count: u
 }
 
 /// What a particle of a run keeps in memory, generously: its record and tally (about 900
-/// bytes with the excursions' counts by level and by class of crossing), and a share of the
-/// study's results.
+/// bytes with the excursions' counts by level and by class of crossing, and 24 bytes per
+/// deposit event for the maps), and a share of the study's results.
 pub(super) const PARTICLE_BYTES: u64 = 1536;
 
 pub(super) fn check_transient(src: &SceneSource, transient: f64) -> Result<(), Error> {

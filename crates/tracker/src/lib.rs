@@ -89,7 +89,7 @@ pub mod openings {
     pub use crate::model::openings::*;
     pub use crate::model::potential_flow::*;
 }
-pub use estimation::{allocation, convergence, decay, run};
+pub use estimation::{allocation, convergence, decay, maps, run};
 pub use model::{furnishing, geometry};
 pub use physics::{correlations, intermittency};
 /// Size distributions ([`studies::distribution`]) and their mass through a room
@@ -109,5 +109,7 @@ pub use geometry::{Geometry, Orientation, Wall};
 pub use openings::{Opening, OpeningKind};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Cancel, Estimate, Run};
 pub use scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
-pub use tracking::{Fate, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS, NEAR_FLOOR_SHARE};
+pub use tracking::{
+    Fate, Landed, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS, NEAR_FLOOR_SHARE,
+};
 pub use wall_function::{Correlation, WallFunction};

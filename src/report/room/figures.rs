@@ -222,6 +222,13 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
             };
             notes.push(format!("fitted beta {beta} /h"));
         }
+        if let Some(f) = &r.release_fit {
+            notes.push(format!(
+                "gone before the window; fitted from t = 0 to {} s: beta {} /h",
+                significant(f.window_s[1], 2),
+                rate_cell(&f.beta_per_hour)
+            ));
+        }
         if a > 0.0 {
             series.push(ventilation("ventilation"));
         }
@@ -252,10 +259,12 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
     let curves = dir.join("room-decay.csv");
     std::fs::write(&curves, text).map_err(|e| format!("cannot write {}: {e}", curves.display()))?;
     // Deposition maps, one CSV per surface (walls, then furnishing faces, named as
-    // `table.top`) and size, under a header of `#` lines, and a figure per size.
+    // `table.top`) and size, under a header of `#` lines: the tracked particles' deposits
+    // over the whole run, per cell. The figure per size, and its CSV, are the study's own
+    // estimator per cell: the deposition velocity over the averaging window.
     for r in rows {
         let label = (r.diameter_um * 1e4).round() / 1e4;
-        let mut panels = Vec::new();
+        let of = density_label(rows, r.density, "-", "kgm3");
         for m in &r.maps {
             let ((ra, r0, r1), (ca, c0, c1)) = (m.rows, m.columns);
             let (n, k) = (m.cells.len(), m.cells.first().map_or(0, Vec::len));
@@ -278,36 +287,129 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
                 text.push('\n');
             }
             // Bins of two densities can share a diameter: the density tells their files apart.
-            let name = &m.surface;
-            let path =
-                dir.join(format!("room-map-{name}-{label}um{}.csv", density_label(rows, r.density, "-", "kgm3")));
+            let path = dir.join(format!("room-map-{}-{label}um{of}.csv", m.surface));
             std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            // The figure shows the room's six surfaces and each furnishing's top, the second
-            // in-plane axis up (z on a wall, y on the floor and ceiling).
-            if m.kind == "wall" || name.ends_with(".top") {
-                let cells = (0..k).map(|j| (0..n).map(|i| m.cells[i][j]).collect());
-                let axes = [m.columns, m.rows];
-                let outlines = outlines(study, r, name);
-                panels.push(plot::MapPanel { name: name.clone(), cells: cells.collect(), axes, outlines });
-            }
         }
-        let figure = dir.join(format!("room-map-{label}um{}.svg", density_label(rows, r.density, "-", "kgm3")));
-        let title =
-            format!("Deposits of the tracked particles, {label} um{}", density_label(rows, r.density, ", ", " kg/m^3"));
-        plot::maps(&figure, &title, &panels)?;
+        let (panels, text) = flux_maps(study, r, rows);
+        let path = dir.join(format!("room-flux-{label}um{of}.csv"));
+        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        let figure = dir.join(format!("room-map-{label}um{of}.svg"));
+        let title = format!(
+            "Deposition velocity per cell, {label} um{} (averaged from {} s)",
+            density_label(rows, r.density, ", ", " kg/m^3"),
+            shown(r.averaged_from_s)
+        );
+        plot::maps(&figure, &title, "deposition velocity (m/s)", &panels)?;
     }
     note(format!(
-        "figures: {}, {} and {}; decay curves: {}; deposition maps ({}x{} cells per surface): {}/room-map-SURFACE-SIZEum{}.csv, drawn per size as room-map-SIZEum.svg",
+        "figures: {}, {} and {}; decay curves: {}; deposits per cell ({}x{} cells per surface): {dir}/room-map-SURFACE-SIZEum{of}.csv; \
+         deposition velocity per cell: {dir}/room-flux-SIZEum{of}.csv, drawn per size as room-map-SIZEum{of}.svg",
         deposition.display(),
         beta.display(),
         decay.display(),
         curves.display(),
         MAP_BINS[0],
         MAP_BINS[1],
-        dir.display(),
-        if first_seen(rows.iter().map(|r| r.density)).len() > 1 { "-DENSITYkgm3" } else { "" }
+        dir = dir.display(),
+        of = if first_seen(rows.iter().map(|r| r.density)).len() > 1 { "-DENSITYkgm3" } else { "" }
     ));
     Ok(())
+}
+
+/// The axes' names.
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// One size's deposition velocity per cell: the figure's panels (the room's six surfaces and
+/// each furnishing's top, the second in-plane axis up: z on a wall, y on the floor and
+/// ceiling) and the CSV of every surface's cells, one line each.
+fn flux_maps(study: &RoomStudy, r: &Row, rows: &[Row]) -> (Vec<plot::MapPanel>, String) {
+    let scene = &study.scene;
+    let mut text = format!(
+        "# depo room deposition velocity per cell, particle diameter {} um{}: the study's estimator \
+         (weighted deposits over the mean concentration) over the averaging window from {} s; \
+         a cell without a deposit has value 0 and its 95 % upper bound\n\
+         surface,row_axis,row_from_m,row_to_m,column_axis,column_from_m,column_to_m,vd_m_s,error_m_s,events,upper_bound_m_s\n",
+        significant(r.diameter_um, 4),
+        density_label(rows, r.density, ", ", " kg/m^3"),
+        shown(r.averaged_from_s),
+    );
+    let mut panels = Vec::new();
+    for (id, map) in r.flux_maps.iter().enumerate() {
+        let name = scene.surface_name(id);
+        let drawn = id < 6 || name.ends_with(".top");
+        let Some(m) = map else {
+            if drawn {
+                let w = &scene.surfaces()[id];
+                let [a, b] = depo_tracker::geometry::in_plane_axes(w.axis);
+                let size = scene.geometry.size();
+                panels.push(plot::MapPanel {
+                    name,
+                    detail: "wall function".into(),
+                    cells: Err("no map: the wall function's deposits are expected values without a place".into()),
+                    axes: [(AXES[b], 0.0, size[b]), (AXES[a], 0.0, size[a])],
+                    outlines: Vec::new(),
+                });
+            }
+            continue;
+        };
+        let [a, b] = m.axes;
+        let [da, db] = m.cell_size();
+        for i in 0..m.bins[0] {
+            for j in 0..m.bins[1] {
+                let c = &m.cells[i * m.bins[1] + j];
+                let bound = if c.events == 0 { c.upper_bound.to_string() } else { String::new() };
+                text.push_str(&format!(
+                    "{name},{},{},{},{},{},{},{},{},{},{bound}\n",
+                    AXES[a],
+                    m.low[0] + i as f64 * da,
+                    m.low[0] + (i + 1) as f64 * da,
+                    AXES[b],
+                    m.low[1] + j as f64 * db,
+                    m.low[1] + (j + 1) as f64 * db,
+                    c.value,
+                    c.error,
+                    c.events,
+                ));
+            }
+        }
+        if !drawn {
+            continue;
+        }
+        // Rows of the panel along the second in-plane axis (up), columns along the first.
+        let cells = (0..m.bins[1])
+            .map(|j| {
+                (0..m.bins[0])
+                    .map(|i| {
+                        let k = i * m.bins[1] + j;
+                        plot::MapCell { value: m.cells[k].value, resolved: m.resolved(k) }
+                    })
+                    .collect()
+            })
+            .collect();
+        let events: usize = m.cells.iter().map(|c| c.events).sum();
+        let detail = if events == 0 {
+            // One cell: the surface's bound.
+            format!("no deposit: < {:.1e} m/s", m.cells[0].upper_bound)
+        } else if m.bins == [1, 1] {
+            let state = if m.resolved(0) { "resolved" } else { "unresolved" };
+            format!("one cell: {:.1e} m/s, {state}", m.cells[0].value)
+        } else {
+            let side = if (da - db).abs() <= 1e-9 * da {
+                format!("{} m", significant(da, 2))
+            } else {
+                format!("{} x {} m", significant(da, 2), significant(db, 2))
+            };
+            format!("{side} cells, {} % resolved", (m.resolved_share() * 100.0).round())
+        };
+        panels.push(plot::MapPanel {
+            detail,
+            cells: Ok(cells),
+            axes: [(AXES[b], m.low[1], m.high[1]), (AXES[a], m.low[0], m.high[0])],
+            outlines: outlines(study, r, &name),
+            name,
+        });
+    }
+    (panels, text)
 }
 
 /// The steady state under the study's continuous source, per size, into

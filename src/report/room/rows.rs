@@ -6,9 +6,10 @@
 use depo_tracker::filtration::Filtration;
 use depo_tracker::furnishing::FACE_NAMES;
 use depo_tracker::geometry::in_plane_axes;
+use depo_tracker::maps::FluxMap;
 use depo_tracker::steady::{Source, NOT_WELL_MIXED};
 use depo_tracker::studies::{RoomPoint, RoomStudy, MAP_BINS};
-use depo_tracker::{binomial_error, DecayCurve, Estimate, Scene};
+use depo_tracker::{binomial_error, DecayCurve, DecayFit, Estimate, Scene};
 use serde::Serialize;
 
 use super::resolution::unresolved;
@@ -110,6 +111,11 @@ pub struct Row {
     /// `beta` fitted to the decay curve as decay experiments fit it; absent when fewer than 3
     /// sample times qualify.
     pub decay_fit: Option<DecayFitRow>,
+    /// Where `decay_fit` is absent (every particle gone before the window, or too soon for
+    /// its sample times): the release's decay fitted from `t = 0` on its own time scale, to
+    /// the last time 50 particles were airborne.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub release_fit: Option<DecayFitRow>,
     /// The airborne share of the release over the run.
     pub decay: Curve,
     /// The surfaces (floor, ceiling, walls) whose figure is unresolved: no deposit event, or
@@ -120,6 +126,10 @@ pub struct Row {
     pub furnishings: Vec<FurnishingRow>,
     /// Each surface's deposition map: the tracked particles' deposits over the run, per cell.
     pub maps: Vec<SurfaceMap>,
+    /// Each surface's deposition velocity per cell, from the study's estimator (the figures'
+    /// maps and their CSV files; not in the JSON, whose `maps` are the counts).
+    #[serde(skip)]
+    pub flux_maps: Vec<Option<FluxMap>>,
 }
 
 /// One surface's deposition map for one size, as the JSON, the CSV files and the figure give
@@ -349,6 +359,24 @@ pub struct DecayFitRow {
     pub z: Option<f64>,
 }
 
+impl DecayFitRow {
+    /// The row of a fit, its rates per hour.
+    fn of(f: DecayFit) -> Self {
+        let per_hour = |e: Estimate| Measured::from(e).scaled(3600.0);
+        Self {
+            beta_per_hour: per_hour(f.beta),
+            total_per_hour: per_hour(f.total),
+            window_s: f.window,
+            points: f.points,
+            difference_per_hour: Difference {
+                value: f.against_loss_rate.difference * 3600.0,
+                error: f.against_loss_rate.error * 3600.0,
+            },
+            z: f.against_loss_rate.z,
+        }
+    }
+}
+
 /// A difference of two estimates from the same particles, with its paired standard error.
 #[derive(Serialize)]
 pub struct Difference {
@@ -486,17 +514,8 @@ pub(super) fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtr
                 airborne: Share::of((b.airborne, b.airborne_mass), released, None),
             }
         },
-        decay_fit: p.decay_fit.map(|f| DecayFitRow {
-            beta_per_hour: per_hour(f.beta),
-            total_per_hour: per_hour(f.total),
-            window_s: f.window,
-            points: f.points,
-            difference_per_hour: Difference {
-                value: f.against_loss_rate.difference * 3600.0,
-                error: f.against_loss_rate.error * 3600.0,
-            },
-            z: f.against_loss_rate.z,
-        }),
+        decay_fit: p.decay_fit.map(DecayFitRow::of),
+        release_fit: p.release_fit.map(DecayFitRow::of),
         decay: Curve { intercept: p.decay_fit.map(|f| f.intercept), ..Curve::of(&p.decay) },
         deposited: Deposited {
             floor: p.deposited[0].0,
@@ -529,5 +548,6 @@ pub(super) fn row(p: &RoomPoint, scene: &Scene, density: f64, filtration: &Filtr
             })
             .collect(),
         maps: surface_maps(scene, p),
+        flux_maps: p.flux_maps.clone(),
     }
 }

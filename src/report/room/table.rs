@@ -8,10 +8,11 @@ use depo_tracker::studies::RoomStudy;
 use depo_tracker::{Flow, Geometry};
 
 use super::distribution::{DistributionReport, MassUnit, Part, PM_DEFINITION};
-use super::resolution::{particles_to_resolve, two_figures_up, RESOLVABLE, RESOLVED_ERROR};
+use super::figures::significant;
+use super::resolution::{particles_to_resolve, two_figures_up, RESOLVED_ERROR};
 use super::rows::{source_label, Share};
 use super::{rate_cell, Measured, RoomResult, Row};
-use crate::report::{outln, ERROR_NOTE};
+use crate::report::outln;
 use crate::text::shown;
 use depo_tracker::steady::NOT_WELL_MIXED;
 
@@ -96,16 +97,16 @@ pub fn table(r: &RoomResult) -> String {
     }
     outln!(
         o,
-        "{:>8}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7} {:>6} {:>10}{}  method",
+        "{:>8}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>9} {:>6} {:>10}{}  method",
         "d (um)",
-        "floor",
-        "L&N",
-        "ceiling",
-        "L&N",
-        "walls",
-        "L&N",
+        "floor (m/s)",
+        "L&N (m/s)",
+        "ceiling (m/s)",
+        "L&N (m/s)",
+        "walls (m/s)",
+        "L&N (m/s)",
         "beta (1/h)",
-        "L&N",
+        "L&N (1/h)",
         "ratio",
         "near floor",
         if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
@@ -125,7 +126,7 @@ pub fn table(r: &RoomResult) -> String {
         let method = if r.averaged_from_s == 0.0 && study.transient > 0.0 { format!("{method} +") } else { method };
         outln!(
             o,
-            "{:>8.3}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>7.3} {:>6.2} {:>10}{}  {method}",
+            "{:>8.3}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>9.3} {:>6.2} {:>10}{}  {method}",
             r.diameter_um,
             cell(r, "floor", &r.floor),
             model_cell(r.lai_nazaroff.floor),
@@ -150,34 +151,26 @@ pub fn table(r: &RoomResult) -> String {
     if furnished {
         furnishings_table(o, rows, study);
     }
-    outln!(o, "{ERROR_NOTE}");
-    if rows.iter().any(|r| r.well_mixed == Some(false)) {
-        outln!(
-            o,
-            "~ not well mixed for this size: near-floor concentration above {NOT_WELL_MIXED} times the room's mean, so v_d and \
-             beta are not a well-mixed room's (--help says more)."
-        );
-    }
+    // One legend line: the marks the table uses; room --help and docs/commands.md say more.
     let model = |r: &Row| [r.lai_nazaroff.floor, r.lai_nazaroff.ceiling, r.lai_nazaroff.walls];
-    if rows.iter().flat_map(model).any(|v| v < MODEL_NONE) {
-        outln!(
-            o,
-            "L&N < {MODEL_NONE:.0e}: Lai & Nazaroff give below {MODEL_NONE:.0e} m/s (the ceiling for coarse particles), no deposition."
-        );
-    }
-    if rows.iter().any(|r| r.averaged_from_s == 0.0) && study.transient > 0.0 {
-        outln!(
-            o,
-            "+ every particle left the air before the averaging window opened: averaged over the release from t = 0 (what became of it, not a well-mixed room's rates; the times by which half and 90 % had deposited are in the release table)."
-        );
+    let mut legend = vec!["+- 1 s.e.".to_string(), "[n] deposit events".into(), "< 95 % upper bound".into()];
+    if rows.iter().any(|r| r.excursions_truncated.is_some()) {
+        legend.push("excursions (x % at T s): weight given up at their longest T".into());
     }
     if rows.iter().any(|r| !r.unresolved.is_empty()) {
-        outln!(
-            o,
-            "* unresolved: no deposit event, or, where Lai & Nazaroff give at least {:.0e} m/s, a relative standard error or a share given up above {} %.",
-            RESOLVABLE,
-            100.0 * RESOLVED_ERROR
-        );
+        legend.push(format!("* unresolved (no event, or error above {} %)", 100.0 * RESOLVED_ERROR));
+    }
+    if rows.iter().any(|r| r.well_mixed == Some(false)) {
+        legend.push(format!("~ not well mixed (near floor above {NOT_WELL_MIXED})"));
+    }
+    if rows.iter().any(|r| r.averaged_from_s == 0.0) && study.transient > 0.0 {
+        legend.push("+ all gone before the window: from t = 0".into());
+    }
+    if rows.iter().flat_map(model).any(|v| v < MODEL_NONE) {
+        legend.push(format!("L&N < {MODEL_NONE:.0e}: none"));
+    }
+    outln!(o, "{}; room --help says more.", legend.join("; "));
+    if rows.iter().any(|r| !r.unresolved.is_empty()) {
         let more: Vec<String> = rows
             .iter()
             .filter_map(|r| {
@@ -188,12 +181,7 @@ pub fn table(r: &RoomResult) -> String {
             })
             .collect();
         if !more.is_empty() {
-            outln!(
-                o,
-                "  Errors above {} % would take about {} (an error falls as one over the square root of the particles; particles.max_count in a scene file).",
-                100.0 * RESOLVED_ERROR,
-                more.join(", ")
-            );
+            outln!(o, "To resolve to {} %: about {} (particles.max_count).", 100.0 * RESOLVED_ERROR, more.join(", "));
         }
     }
     outln!(
@@ -292,30 +280,31 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
     outln!(
         o,
         "After the release at t = 0, as a decay experiment reads it: beta fitted = the least-squares slope of ln N(t) \
-         over the window (from the averages' start while >= {MIN_AIRBORNE} particles are airborne), less a = {ach} /h, \
+         over the window (from the averages' start while >= {MIN_AIRBORNE} particles are airborne), less a = {} /h, \
          [deposits in the window], ? fewer than {FEW_DEPOSITS}; z = (fitted - beta) / the standard error of that \
          difference, paired over the particles both rest on (- where either has no event or no error). Then where the released \
          particles are at the end, % of the number (for one size also of the mass), and the floor's loading per mg \
-         released."
+         released.",
+        shown(ach)
     );
     outln!(
         o,
-        "{:>8}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20}  {:>28}",
+        "{:>8}  {:>28} {:>6} {:>12}  {:>9} {:>9} {:>9}{} {:>11} {:>10}  {:>20}  {:>28}",
         "d (um)",
         "beta fitted (1/h)",
         "z",
         "window (s)",
-        "floor",
-        "ceiling",
-        "walls",
+        "floor %",
+        "ceiling %",
+        "walls %",
         // A furnished room's release has a part on the furnishings.
         if rows.iter().any(|r| r.release.furnishings.is_some()) {
-            format!(" {:>11}", "furnishings")
+            format!(" {:>13}", "furnishings %")
         } else {
             String::new()
         },
-        "exhausted",
-        "airborne",
+        "exhausted %",
+        "airborne %",
         "floor (ug/m2 per mg)",
         "50 % / 90 % deposited by (s)"
     );
@@ -327,13 +316,21 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
                 f.z.map_or("-".to_string(), |z| format!("{z:.1}")),
                 format!("{:.0}-{:.0}", f.window_s[0], f.window_s[1]),
             ),
-            None => ("no fit".to_string(), "-".to_string(), "-".to_string()),
+            None => match &r.release_fit {
+                // Gone before the window: fitted from the release on.
+                Some(f) => (
+                    format!("{} ^", fitted_cell(&f.beta_per_hour)),
+                    f.z.map_or("-".to_string(), |z| format!("{z:.1}")),
+                    format!("{}-{}", significant(f.window_s[0], 2), significant(f.window_s[1], 2)),
+                ),
+                None => ("none (too few particles)".to_string(), "-".to_string(), "-".to_string()),
+            },
         };
         let release = &r.release;
         let pct = |s: &Share| format!("{:.1}", 100.0 * s.share);
         outln!(
             o,
-            "{:>8.3}  {:>28} {:>6} {:>12}  {:>7} {:>7} {:>7}{} {:>9} {:>8}  {:>20.3e}  {:>28}",
+            "{:>8.3}  {:>28} {:>6} {:>12}  {:>9} {:>9} {:>9}{} {:>11} {:>10}  {:>20}  {:>28}",
             r.diameter_um,
             fitted,
             z,
@@ -341,19 +338,22 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
             pct(&release.floor),
             pct(&release.ceiling),
             pct(&release.walls),
-            release.furnishings.as_ref().map_or(String::new(), |s| format!(" {:>11}", pct(s))),
+            release.furnishings.as_ref().map_or(String::new(), |s| format!(" {:>13}", pct(s))),
             pct(&release.exhausted),
             pct(&release.airborne),
-            // kg/m^2 per kg released, for 1 mg released, in ug/m^2.
-            release.floor.loading_per_m2.unwrap_or(0.0) * 1e3,
+            // kg/m^2 per kg released, for 1 mg released, in ug/m^2; none deposited, "-".
+            release.floor.loading_per_m2.filter(|&l| l > 0.0).map_or("-".to_string(), |l| format!("{:.3e}", l * 1e3)),
             r.deposited_by_s.map(|t| t.map_or("-".to_string(), |t| format!("{t:.0}"))).join(" / ")
         );
     }
-    outln!(
-        o,
-        "The curve counts the tracked particles, which leave the air by their own deposits: where deposition \
-         is rare it resolves beta far less well than the study's excursions (compare the errors)."
-    );
+    // One legend line; room --help says more.
+    let mut legend = vec![format!("? fewer than {FEW_DEPOSITS} deposits"), "- none".to_string()];
+    if rows.iter().any(|r| r.release_fit.is_some()) {
+        legend.push(format!(
+            "^ gone before the window: fitted from t = 0 while {MIN_AIRBORNE} airborne (how fast, not a well-mixed rate)"
+        ));
+    }
+    outln!(o, "{}; room --help says more.", legend.join("; "));
     let apart = rows.iter().filter_map(|r| r.decay_fit.as_ref()?.z).any(|z| z.abs() > 3.0);
     if openings && apart {
         outln!(
@@ -381,18 +381,18 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
     let ventilated = rows.iter().any(|r| r.steady.as_ref().is_some_and(|s| s.indoor_outdoor.is_some()));
     outln!(
         o,
-        "{:>8}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7} {:>12}{}",
+        "{:>8}  {:>18}  {:>27} {:>27} {:>27}  {:>7} {:>9} {:>7} {:>9} {:>11} {:>8} {:>12}{}",
         "d (um)",
         "time in air (h)",
         "floor (m/s)",
         "ceiling (m/s)",
         "walls (m/s)",
-        "floor",
-        "ceiling",
-        "walls",
-        "furnish",
-        "exhausted",
-        "beyond",
+        "floor %",
+        "ceiling %",
+        "walls %",
+        "furnish %",
+        "exhausted %",
+        "beyond %",
         "near floor",
         if ventilated { format!("  {:>18}", "C_in/C_out") } else { String::new() }
     );
@@ -405,7 +405,7 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
         let pct = |x: f64| format!("{:.1}", 100.0 * x);
         outln!(
             o,
-            "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>6} {:>7} {:>6} {:>7} {:>9} {:>7} {:>12}{}",
+            "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>7} {:>9} {:>7} {:>9} {:>11} {:>8} {:>12}{}",
             r.diameter_um,
             format!("{:.3} +- {:.3}", st.residence_h.value, st.residence_h.error),
             st.floor_velocity.cell(),

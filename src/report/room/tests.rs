@@ -150,7 +150,7 @@ fn a_size_the_room_does_not_mix_well_is_flagged_in_every_report() {
     let line = |d: &str| table.lines().find(|l| l.trim_start().starts_with(d)).unwrap().to_string();
     assert!(line("50.000").contains(&format!("{:.2} ~", near.value)), "{}", line("50.000"));
     assert!(!line("0.300").contains(" ~ "), "{}", line("0.300"));
-    assert!(table.contains("~ not well mixed for this size"), "{table}");
+    assert!(table.contains("~ not well mixed (near floor above 1.2)"), "{table}");
 
     let json: serde_json::Value = serde_json::from_str(&json::to_json(&result).unwrap()).unwrap();
     assert_eq!(json["sizes"][0]["well_mixed"], serde_json::json!(true));

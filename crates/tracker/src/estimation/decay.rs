@@ -240,11 +240,56 @@ impl Run {
     /// what this run's particles give.
     #[must_use]
     pub fn decay_fit(&self, curve: &DecayCurve, air_exchange: f64) -> Option<DecayFit> {
+        self.decay_fit_from(curve, air_exchange, self.window[0])
+    }
+
+    /// For a release that leaves the air before the averaging window opens (or too soon for
+    /// [`Run::decay_fit`]'s three sample times): its decay fitted from the release, `t = 0`,
+    /// on a curve of `intervals + 1` sample times from the release to the last step at which
+    /// at least [`MIN_AIRBORNE`] particles are in the air (the same rule as the window's fit,
+    /// on a time scale the release has), as [`Run::decay_fit`] fits it otherwise. The curve
+    /// and its fit; `None` with fewer than [`MIN_AIRBORNE`] particles or 3 distinct sample
+    /// steps. Where the particles settle out of a room that does not mix them, `N(t)` falls
+    /// more nearly linearly than exponentially: the fitted rate then characterises how fast
+    /// the release went, not a first-order loss rate.
+    #[must_use]
+    pub fn release_decay(&self, intervals: usize, air_exchange: f64) -> Option<(DecayCurve, DecayFit)> {
+        let released = self.records.len();
+        if released < MIN_AIRBORNE {
+            return None;
+        }
+        let mut leaves: Vec<u64> = self.records.iter().map(|r| leaves_after(r.fate, r.steps)).collect();
+        leaves.sort_unstable();
+        // At step n, #{leaves > n} are airborne: at least MIN_AIRBORNE up to one step before
+        // the MIN_AIRBORNE-th last departure.
+        let last = leaves[released - MIN_AIRBORNE].saturating_sub(1).min(self.steps());
+        let intervals = intervals.max(1) as u64;
+        let mut steps: Vec<u64> = (0..=intervals).map(|k| (k * last + intervals / 2) / intervals).collect();
+        steps.dedup();
+        if steps.len() < 3 {
+            return None;
+        }
+        let counts = self.airborne_at(&steps);
+        let airborne: Vec<f64> = counts.iter().map(|&c| c as f64 / released as f64).collect();
+        let curve = DecayCurve {
+            times: steps.iter().map(|&s| s as f64 * self.dt).collect(),
+            errors: airborne.iter().map(|&f| binomial_error(f, released)).collect(),
+            steps,
+            airborne,
+            counts,
+            released,
+        };
+        let fit = self.decay_fit_from(&curve, air_exchange, 0.0)?;
+        Some((curve, fit))
+    }
+
+    /// [`Run::decay_fit`] over the sample times from `from` (s) on.
+    fn decay_fit_from(&self, curve: &DecayCurve, air_exchange: f64, from: f64) -> Option<DecayFit> {
         assert!(
             curve.released == self.records.len() && curve.steps.iter().all(|&n| n <= self.steps()),
             "the decay curve is not this run's"
         );
-        let from = self.window[0] * (1.0 - 1e-12);
+        let from = from * (1.0 - 1e-12);
         let mut chosen: Vec<usize> = Vec::new();
         for (k, (&t, &c)) in curve.times.iter().zip(&curve.counts).enumerate() {
             if t >= from {

@@ -3,6 +3,7 @@
 
 use crate::estimation::allocation::{self, Figure};
 use crate::estimation::decay::{DecayCurve, DecayFit, DECAY_INTERVALS};
+use crate::estimation::maps::FluxMap;
 use crate::estimation::run::{run, run_more, Balance, Estimate, Run};
 use crate::model::error::SceneError;
 use crate::model::excursions::{crossing_class, CROSSING_CLASSES};
@@ -149,6 +150,11 @@ pub struct RoomPoint {
     /// the order x, y, z (rows, columns): the floor's over x and y, the `x0`/`x1` walls' over
     /// y and z; a furnishing face's over the box's extent.
     pub maps: Vec<Vec<u32>>,
+    /// Each surface's deposition velocity per cell from the run's own estimator (the weighted
+    /// deposits and exposure of the averaging window, as `floor`, `ceiling`, `walls` and
+    /// `furnishings` count them), on the grid [`Run::resolved_flux_map`] chooses, in id order
+    /// as `maps`; `None` for the wall function's walls (their deposits have no place).
+    pub flux_maps: Vec<Option<FluxMap>>,
     /// Deposited count and mass (kg) of the tracked particles over the whole run onto the
     /// room's floor, ceiling and vertical walls (the furnishings' faces are in `furnishings`):
     /// with those and `balance`'s exhausted and airborne, the whole release, exactly.
@@ -166,6 +172,10 @@ pub struct RoomPoint {
     /// The loss rate fitted to it as decay experiments fit theirs, and `beta` from it with
     /// the air-exchange rate taken off; `None` when fewer than 3 sample times qualify.
     pub decay_fit: Option<DecayFit>,
+    /// Where `decay_fit` has no fit (every particle gone before the window, or too soon for
+    /// its sample times): the release's decay fitted from `t = 0` on a curve of its own time
+    /// scale ([`Run::release_decay`]), its window and rate.
+    pub release_fit: Option<DecayFit>,
     /// Where the tracked particles are at the end of the run (with ventilation, the exhausted
     /// ones too): the mass balance a size distribution's is summed from.
     pub balance: Balance,
@@ -477,6 +487,10 @@ impl RoomStudy {
             });
             let decay = result.decay_curve(DECAY_INTERVALS);
             let decay_fit = result.decay_fit(&decay, scene.exchange_rate());
+            let release_fit = match decay_fit {
+                None => result.release_decay(DECAY_INTERVALS, scene.exchange_rate()).map(|(_, f)| f),
+                Some(_) => None,
+            };
             points.push(RoomPoint {
                 diameter: d,
                 floor: v(Orientation::Floor),
@@ -504,6 +518,17 @@ impl RoomStudy {
                         Some(k) => {
                             let b = &scene.furnishings[k];
                             result.deposition_map_within(w.id, b.low, b.high, MAP_BINS)
+                        }
+                    })
+                    .collect(),
+                flux_maps: result
+                    .walls
+                    .iter()
+                    .map(|w| match w.furnishing {
+                        None => result.resolved_flux_map(w.id, [0.0; 3], size),
+                        Some(k) => {
+                            let b = &scene.furnishings[k];
+                            result.resolved_flux_map(w.id, b.low, b.high)
                         }
                     })
                     .collect(),
@@ -538,6 +563,7 @@ impl RoomStudy {
                 }),
                 decay,
                 decay_fit,
+                release_fit,
                 balance,
                 averaged_from: scene.average_from,
                 deposited_by: [0.5, 0.9].map(|share| deposited_by(&result.records, share)),

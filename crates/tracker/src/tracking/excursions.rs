@@ -59,6 +59,24 @@ pub struct ParticleTally {
     /// window spent in a wall's layer, s (0 otherwise): the layer's concentration over the
     /// mean is this over `exposure`, over the layers' share of the volume.
     pub layer_exposure: f64,
+    /// Where the deposits of `deposited` and `on_furnishings` landed, one entry per deposit
+    /// event in the order made (empty, without allocating, for a particle that deposits
+    /// nothing in the window): what a deposition map of the run's estimator spreads over its
+    /// cells ([`Run::flux_map`](crate::run::Run::flux_map)). The wall function's walls keep
+    /// expected deposits without a place: their entries are left out.
+    pub landed: Vec<Landed>,
+}
+
+/// One weighted deposit of a [`ParticleTally`] and where it landed: 24 bytes, since a
+/// particle with excursions keeps one per deposit event.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Landed {
+    /// The surface's id ([`Run::walls`](crate::run::Run::walls)).
+    pub surface: u32,
+    /// Where, m (single precision: a map's cells are far coarser).
+    pub at: [f32; 3],
+    /// Its weight, as `deposited` counts it.
+    pub weight: f64,
 }
 
 impl Default for ParticleTally {
@@ -75,6 +93,7 @@ impl Default for ParticleTally {
             class_steps: [0; CROSSING_CLASSES],
             class_deposits: [[0.0; CROSSING_CLASSES]; CROSSING_CLASSES],
             layer_exposure: 0.0,
+            landed: Vec::new(),
         }
     }
 }
@@ -86,15 +105,20 @@ impl ParticleTally {
         let mut t = Self { exposure: overlap(0.0, record.time, window), ..Self::default() };
         if let Fate::Deposited(w) = record.fate {
             if record.time >= window[0] && record.time <= window[1] {
-                t.add_deposit(w, 1.0);
+                t.add_deposit(w, 1.0, record.position);
             }
         }
         t
     }
 
-    /// A deposit of `weight` on surface `w`.
+    /// A deposit of `weight` on surface `w` at `at` (m).
     #[inline]
-    fn add_deposit(&mut self, w: usize, weight: f64) {
+    fn add_deposit(&mut self, w: usize, weight: f64, at: [f64; 3]) {
+        if self.landed.capacity() == 0 {
+            // Most particles deposit once at most: no room for more until a second.
+            self.landed.reserve_exact(1);
+        }
+        self.landed.push(Landed { surface: w as u32, at: at.map(|x| x as f32), weight });
         if w < self.deposited.len() {
             self.deposited[w] += weight;
             self.events[w] += 1;
@@ -464,8 +488,8 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
             clock += ticks;
             stats.class_steps[class] += 1;
             match step {
-                Step::Left(Fate::Deposited(w), ..) => {
-                    stats.add_deposit(w, weight);
+                Step::Left(Fate::Deposited(w), _, at) => {
+                    stats.add_deposit(w, weight, at.to_array());
                     stats.class_deposits[class][crossing_class(w)] += weight;
                     break;
                 }

@@ -97,7 +97,7 @@ mod fluid;
 mod lanes;
 mod wall_function;
 
-pub use excursions::ParticleTally;
+pub use excursions::{Landed, ParticleTally};
 
 use contacts::{contacts, inside, wrap, AfterContacts, Flight};
 use fluid::{

@@ -212,6 +212,7 @@ fn run_with_wall_function<
     for (wall, _) in &wf.walls {
         particle.deposited[wall.id] = expected[wall.id];
         particle.events[wall.id] = steps_in_layer[wall.id];
+        particle.landed.retain(|l| l.surface as usize != wall.id);
     }
     particle.layer_exposure = layer_time;
     (record, particle)
