@@ -590,9 +590,9 @@ const MAP_DECADES: f64 = 3.0;
 
 /// Draws `panels` side by side, three to a row, each to scale (a metre as long across as up),
 /// each resolved cell coloured by its value on one logarithmic scale for all (`unit` names
-/// it), from the largest resolved value down [`MAP_DECADES`] decades or to the smallest,
-/// whichever is nearer; cells below the scale take its lowest colour, unresolved ones grey,
-/// empty ones white. A colour bar with its decades labelled goes below, with the legend; each
+/// it), from the largest resolved value down to the smallest, at most three decades and at
+/// least one; cells below the scale take its lowest colour, unresolved ones are paler and
+/// hatched, empty ones white. A colour bar with its ticks labelled goes below, with the legend; each
 /// panel's caption names the surface and its detail; its outlines are drawn in red.
 pub fn maps(path: &Path, title: &str, unit: &str, panels: &[MapPanel]) -> Result<(), Error> {
     const PANEL: (u32, u32) = (300, 260);

@@ -7,7 +7,7 @@
 //! air's volume. It is [`Run::deposition_velocity`]'s ratio restricted to the cell, so the
 //! cells' `v_c A_c` summed over the surface, over the surface's area, is the surface's `v_d`
 //! (to rounding), and each cell's standard error is the same delta method's over the
-//! independent particles (see [`crate::run`]). A cell that straddles an opening's edge counts
+//! independent particles (see [`mod@crate::run`]). A cell that straddles an opening's edge counts
 //! its whole area.
 //!
 //! The grid's cells are square (or as near as the surface's sides allow), as fine as leaves
