@@ -1,15 +1,17 @@
 """What the Python call costs: law.apply against the Rust batch on the same data, same run.
 
     pip install ./python          # an optimised wheel (release profile)
-    python python/benches/apply.py
+    python python/benches/apply.py [--repeats 21]
 
 For each case the same arrays go through `law.apply` (numpy arrays in, outcome array out) and
 through `WallLaw::apply` called directly in Rust (`depo._depo._bench_apply`, timed in Rust),
-alternating, on fresh copies each repeat (copies not timed); the Rust side writes its
-outcomes into one array allocated before timing, as `law.apply(..., out=)` does, while a plain
-`law.apply` allocates a new one per call. Prints a Markdown table of the
-medians: the Python call's extra time as a share of the Rust batch's for 1e6 impacts, and per
-call in microseconds for 10 impacts.
+in pairs, one of each, on fresh copies each repeat (copies not timed), which side goes first
+alternating from pair to pair so that a change in the machine's speed falls on both; the Rust
+side writes its outcomes into one array allocated before timing, as `law.apply(..., out=)`
+does, while a plain `law.apply` allocates a new one per call. Prints a Markdown table: the
+medians of each side, and over the pairs the median and quartiles of the ratio
+`law.apply / Rust` for 1e6 impacts, and of the extra time per call in microseconds for 10
+impacts. On a shared machine the quartiles say how far one pair can be trusted.
 """
 
 import argparse
@@ -41,14 +43,25 @@ def python_seconds(law, v, calls, out):
 
 
 def case(law, n, calls, repeats, out=False):
+    """Seconds of `calls` calls on `n` impacts, per pair: (Python's, Rust's)."""
     v = impacts(n)
     python_seconds(law, v, calls, out)  # warm up: pages, thread pool
     _depo._bench_apply(law, *v, 1, calls)
     py, rs = [], []
-    for _ in range(repeats):
-        py.append(python_seconds(law, v, calls, out))
-        rs.append(_depo._bench_apply(law, *v, 1, calls)[0])
-    return statistics.median(py), statistics.median(rs)
+    for i in range(repeats):
+        if i % 2 == 0:
+            py.append(python_seconds(law, v, calls, out))
+            rs.append(_depo._bench_apply(law, *v, 1, calls)[0])
+        else:
+            rs.append(_depo._bench_apply(law, *v, 1, calls)[0])
+            py.append(python_seconds(law, v, calls, out))
+    return py, rs
+
+
+def spread(values, fmt):
+    """The median and, in brackets, the quartiles of `values`, each formatted by `fmt`."""
+    q1, median, q3 = statistics.quantiles(values, n=4, method="inclusive")
+    return f"{fmt(median)} [{fmt(q1)}, {fmt(q3)}]"
 
 
 def main():
@@ -63,7 +76,7 @@ def main():
     print(f"Python {platform.python_version()}, numpy {np.__version__}, "
           f"{os.cpu_count()} cores, median of {args.repeats} alternating repeats")
     print()
-    print("| law | threads | impacts x calls | Rust batch | law.apply | Python adds |")
+    print("| law | threads | impacts x calls | Rust batch | law.apply | law.apply / Rust, median [quartiles] |")
     print("|---|---|---|---|---|---|")
     for name, law in laws.items():
         for threads in [0, 1]:
@@ -72,14 +85,16 @@ def main():
             for out in [False, True]:
                 py, rs = case(law, 1_000_000, 1, args.repeats, out)
                 call = "1e6 x 1, out=" if out else "1e6 x 1"
-                print(f"| {name} | {shown} | {call} | {rs * 1e3:.2f} ms | {py * 1e3:.2f} ms | "
-                      f"{100 * (py - rs) / rs:+.1f} % |")
+                ratios = [p / r for p, r in zip(py, rs)]
+                print(f"| {name} | {shown} | {call} | {statistics.median(rs) * 1e3:.2f} ms | "
+                      f"{statistics.median(py) * 1e3:.2f} ms | {spread(ratios, lambda x: f'{x:.3f}')} |")
         depo.set_num_threads(0)
         calls = 20_000
         py, rs = case(law, 10, calls, args.repeats)
-        print(f"| {name} | caller | 10 x {calls} | {rs / calls * 1e6:.3f} us/call | {py / calls * 1e6:.3f} us/call | "
-              f"{(py - rs) / calls * 1e6:+.2f} us/call |")
-
+        extra = [(p - r) / calls * 1e6 for p, r in zip(py, rs)]
+        print(f"| {name} | caller | 10 x {calls} | {statistics.median(rs) / calls * 1e6:.3f} us/call | "
+              f"{statistics.median(py) / calls * 1e6:.3f} us/call | "
+              f"{spread(extra, lambda x: f'{x:+.2f}')} us a call more |")
 
 if __name__ == "__main__":
     main()
