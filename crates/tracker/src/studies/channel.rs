@@ -8,6 +8,7 @@ use crate::model::excursions::Sweeps;
 use crate::model::flow::Flow;
 use crate::model::geometry::Geometry;
 use crate::model::scene::{Injection, Scene, SizeDistribution};
+use crate::model::settings::RunSettings;
 use crate::physics::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
 use crate::tracking::WallTally;
 
@@ -70,8 +71,11 @@ pub const CHANNEL_COARSE_FACTOR: u32 = 4;
 /// A channel study: one run per `tau+` in a turbulent channel.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ChannelStudy {
-    /// The channel, its air, flow (a [`Flow::TurbulentChannel`]), walls and time stepping.
+    /// The channel, its air, flow (a [`Flow::TurbulentChannel`]) and walls.
     pub scene: Scene,
+    /// How each `tau+` is run: time step, scheme, duration and seed. The study sets the
+    /// averaging window from `transient`, and below `excursions_below` the excursions.
+    pub settings: RunSettings,
     /// Dimensionless relaxation times `tau+ = tau u*^2 / nu`.
     pub tau_plus: Vec<f64>,
     /// Particles per `tau+`.
@@ -109,16 +113,14 @@ impl Default for ChannelStudy {
         let u_star = 0.3;
         let unit = air.kinematic_viscosity() / u_star;
         let time = unit / u_star;
-        let mut scene = Scene::new(
-            Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 300.0 * unit },
-            0.2 * time,
-            3000.0 * time,
-        );
+        let mut scene =
+            Scene::new(Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 300.0 * unit });
         scene.gravity = [0.0; 3];
         scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
         scene.brownian = true;
         Self {
             scene,
+            settings: RunSettings::new(0.2 * time, 3000.0 * time),
             tau_plus: vec![0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0],
             count: 4000,
             density: 1000.0,
@@ -182,8 +184,9 @@ impl ChannelStudy {
             let excursions = tp < self.excursions_below && self.scene.wall_function.is_none();
             let count = if excursions { self.excursion_count } else { self.count };
             let injection = Injection::new(count, SizeDistribution::Monodisperse { diameter: d }, self.density);
-            let mut scene = self.scene.clone();
-            scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
+            let scene = &self.scene;
+            let mut settings = self.settings.clone();
+            settings.average_from = self.transient * settings.steps() as f64 * settings.dt;
             let mut calibration_seconds = 0.0;
             if excursions {
                 // Factors up to 4 (larger ones made the deep branches, which live long in
@@ -193,11 +196,11 @@ impl ChannelStudy {
                 let (inner, longest) = (CHANNEL_INNERMOST_LEVEL, CHANNEL_LONGEST_EXCURSION);
                 // Without sweeps the branches hover in the viscous sublayer: coarse steps there.
                 let coarse = if sweeps.is_some() { 1 } else { CHANNEL_COARSE_FACTOR };
-                (scene, _, calibration_seconds) =
-                    with_excursions(scene, &injection, pilot, inner, (longest, longest), 4, sweeps, coarse)?;
+                (settings, _, calibration_seconds) =
+                    with_excursions(scene, settings, &injection, pilot, inner, (longest, longest), 4, sweeps, coarse)?;
             }
             let all_walls = |r: &Run| r.deposition_velocity(&(0..r.walls.len()).collect::<Vec<_>>());
-            let mut result = run(&scene, &injection)?;
+            let mut result = run(scene, &settings, &injection)?;
             if let Some(target) = self.target_error {
                 // Two rounds: the second where the pooled estimate still misses the target (an
                 // error that rests on rare events is itself rough from the first particles).
@@ -211,7 +214,7 @@ impl ChannelStudy {
                     if needed <= have || needed as f64 > self.max_factor * count as f64 {
                         break;
                     }
-                    result = run_more(&scene, &Injection { count: needed, ..injection }, result)?;
+                    result = run_more(scene, &settings, &Injection { count: needed, ..injection }, result)?;
                     have = needed;
                 }
             }
@@ -235,9 +238,9 @@ impl ChannelStudy {
                 papavergos_hedley: papavergos_hedley(tp, sc),
                 particle_steps: result.particle_steps(),
                 particles: result.records.len(),
-                excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
+                excursions: settings.excursions.as_ref().map(|_| result.truncated_share()),
                 calibration_seconds,
-                sweeps: scene.excursions.as_ref().is_some_and(|e| e.sweeps.is_some()),
+                sweeps: settings.excursions.as_ref().is_some_and(|e| e.sweeps.is_some()),
                 tally: total(&result.tallies),
                 layer_concentration,
             });
