@@ -75,8 +75,9 @@
 //! step counts as `coarse_factor` steps towards [`Excursions::max_duration`]. Coarse steps are
 //! an approximation of the same dynamics, not a change of the estimator: what they cost in
 //! accuracy is the step's discretisation error, measured against the midpoint scheme at the
-//! scene's step (see [`CHANNEL_COARSE_FACTOR`](crate::studies::channel::CHANNEL_COARSE_FACTOR) for the
-//! channel study's figures); the first-order scheme in coarse steps was 40 % off and is not
+//! scene's step (the channel study's figures, for
+//! [`CHANNEL_COARSE_FACTOR`](crate::studies::channel::CHANNEL_COARSE_FACTOR), are in
+//! docs/performance-log.md); the first-order scheme in coarse steps is far off and is not
 //! offered. Scenes with furnishings or openings take the scene's step throughout.
 //!
 //! ## Sampling by class of crossing

@@ -246,9 +246,8 @@ impl Table {
 
     /// [`Table::at`] for the four distances of the tracker's four lanes, bit for bit. With
     /// `AVX2` (which the caller may set only where the processor has AVX2) the cell search
-    /// and the gather of the four nodes are AVX2 instructions, about 15 fewer instructions per
-    /// particle-step than what the compiler makes of four [`Table::at`]s; otherwise it is
-    /// those four.
+    /// and the gather of the four nodes are AVX2 instructions, fewer than what the compiler
+    /// makes of four [`Table::at`]s (docs/performance-log.md); otherwise it is those four.
     #[inline(always)]
     pub fn at4<const AVX2: bool>(&self, y: [f64; 4]) -> Nodes4 {
         #[cfg(target_arch = "x86_64")]

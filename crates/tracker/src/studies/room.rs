@@ -70,15 +70,15 @@ impl Default for RoomStudy {
     /// Brownian motion, perfectly absorbing surfaces (as Lai & Nazaroff assume), 0.01-10 um
     /// unit-density particles, 1800 s of 0.1 s steps of the midpoint scheme, averages from
     /// 180 s on. The midpoint scheme ([`Scheme::Midpoint`]) at 0.1 s gives `beta` within the
-    /// errors of the default scheme at 0.01 s, where the default scheme at 0.05 s (this
-    /// study's step before) was 9-14 % high at 0.01-0.3 um, in about the same run time.
+    /// errors of the default scheme at 0.01 s, where the default scheme at longer steps is
+    /// biased high, in about the same run time (docs/validation.md, "The time step").
     fn default() -> Self {
-        let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 1800.0);
+        let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] });
         scene.flow = Flow::indoor_room();
         scene.brownian = true;
-        scene.scheme = Scheme::Midpoint;
         Self {
             scene,
+            settings: RunSettings { scheme: Scheme::Midpoint, ..RunSettings::new(0.1, 1800.0) },
             diameters: vec![0.01e-6, 0.03e-6, 0.1e-6, 0.3e-6, 1e-6, 3e-6, 10e-6],
             count: 1000,
             target_error: Some(TARGET_ERROR),

@@ -29,8 +29,8 @@ use crate::model::settings::RunSettings;
 use crate::tracking::WallTally;
 
 /// Excursions per inward crossing in the studies: more than one, as each crossing's
-/// excursions cost less than the plain tracking that found it (room, 0.1 um: efficiency
-/// 21 with one, 32 with three).
+/// excursions cost less than the plain tracking that found it (efficiencies in
+/// docs/performance-log.md).
 pub(crate) const STUDY_SAMPLING: f64 = 3.0;
 
 /// The studies' splitting calibration: run particles per pilot particle, and rounds.
@@ -68,9 +68,8 @@ pub const TARGET_MARGIN: f64 = 1.15;
 /// that duration, when its pilot or a size's whole run gives up more ([`lengthened`]; the
 /// pilot runs again, the size starts afresh): half of [`TARGET_ERROR`], so that what giving
 /// them up may miss (at most that share, had every branch given up deposited) stays within
-/// half a resolved figure's error. The default room gives up 0.3-1.3 % at 0.1-1 um; the
-/// measured rooms of Thatcher et al. (2002), at their lower friction velocities, up to 17 %
-/// at 0.5 um.
+/// half a resolved figure's error. Rooms of lower friction velocity give up more (figures in
+/// docs/performance-log.md).
 pub const LONGEST_SHARE: f64 = 0.025;
 
 /// The most times a room study doubles its excursions' longest duration (from
@@ -151,10 +150,9 @@ pub fn particles_for(e: &Estimate, n: usize, target: f64) -> usize {
 /// `needed` that [`particles_for`] asks of them: [`TARGET_MARGIN`] on the particles it adds,
 /// not on all of them. The margin is for the spread of errors not yet seen: from the first
 /// particles, whose errors rest on few deposits, on all; once most of the particles have run,
-/// the pooled figures' spread is what they showed, and only the added particles' is unknown.
-/// In the furnished, ventilated room at 0.1 um, whose worst figure was 5.6 % after 4000
-/// particles, the margin on all ran 5772 to 4.6 %, on the added ones 5173 to 4.9 %. At
-/// least one more.
+/// the pooled figures' spread is what they showed, and only the added particles' is unknown
+/// (docs/performance-log.md, "The pilot a quarter of the first particles, and a top-up's
+/// margin on what it adds"). At least one more.
 #[must_use]
 pub fn topped_up(have: usize, needed: usize) -> usize {
     let bare = needed as f64 / TARGET_MARGIN;

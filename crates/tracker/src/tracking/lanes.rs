@@ -44,7 +44,7 @@ struct Lane {
 /// alone, or a laminar profile, there are no look-ups to overlap and no free flight, and one
 /// particle at a time is faster: `track` does not send such scenes here.) A step that ends
 /// for every lane in the air, without a contact or a wrap, is taken for all lanes at once
-/// (13 % fewer instructions in the turbulent bench scene, about 3 % less time). Each
+/// (fewer instructions and less time; docs/performance-log.md). Each
 /// particle takes exactly the steps, random numbers and contacts it takes alone (a lane whose
 /// particle is done takes the next one), so the records are identical to [`run_particle`]'s
 /// (tested); only the order in which contacts add their energies to the tallies differs.
