@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: the two studies and their excursions against plain tracking.
+//!
 //! The room and channel studies against their correlations, on small runs, and the near-wall
 //! excursions against plain tracking.
 

@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: the tabulated dispersion model a run reads (its profiles' table and look-ups).
+//!
 //! The air flow a particle sees: a mean velocity and, for turbulent scenes, velocity
 //! fluctuations from a stochastic model that respects the near-wall anisotropy.
 //!

@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: a particle tracked with its near-wall excursions.
+//!
 //! Plain tracking with near-wall excursions ([`Excursions`]): each injected particle is
 //! tracked as alone, and each of its entries into the excursions' region (an inward crossing
 //! of the near-wall layer, or in a channel with [`Excursions::sweeps`] a strong sweep) starts

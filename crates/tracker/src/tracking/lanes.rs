@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: the four-lane step and its AVX2 form, tested against one particle alone.
+//!
 //! Turbulent scenes, and scenes of constant forcing, [`WIDTH`] particles side by side: the
 //! same steps, random numbers and contacts as one particle alone, with the lanes' look-ups
 //! overlapped and their arithmetic vectorised (see [`run_lanes`]).

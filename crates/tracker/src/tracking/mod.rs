@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: one particle's loop, its step and its injection (contacts, fluid and lanes are modules of their own).
+//!
 //! One particle through a whole run: the step (drag relaxation, gravity, Brownian motion,
 //! turbulent dispersion), the wall contacts within a step, and the particle's fate.
 //!
