@@ -113,7 +113,7 @@ pub(crate) use wall_function::track_wall_function;
 /// well mixed near steep rms gradients (figures in docs/validation.md, "The time step").
 pub const MAX_STEP_GRADIENT: f64 = 0.05;
 
-/// [`MAX_STEP_GRADIENT`] for [`Scheme::Midpoint`](crate::model::scene::Scheme::Midpoint),
+/// [`MAX_STEP_GRADIENT`] for [`Scheme::Midpoint`](crate::model::settings::Scheme::Midpoint),
 /// which reads the profiles half a step on (second order) and keeps tracers well mixed up to
 /// twice the default's limit (docs/validation.md, "The time step").
 pub const MAX_STEP_GRADIENT_MIDPOINT: f64 = 0.1;
