@@ -1,16 +1,17 @@
 //! The tracker snippet of `docs/tracker.md`, runnable: `cargo run --release --example room_from_rust`.
 
-use depo::tracker::{run, Flow, Geometry, Injection, Scene, SizeDistribution, WallBehaviour};
+use depo::tracker::{run, Flow, Geometry, Injection, RunSettings, Scene, SizeDistribution, WallBehaviour};
 use depo::wall_model::WallLaw;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.05, 600.0); // dt, duration (s)
+    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] });
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
-    scene.average_from = 60.0; // averages over [60 s, 600 s]
     scene.walls[0] = WallBehaviour::Law { law: WallLaw::preset("dunn1995-copper")?, size: None }; // the floor
     let particles = Injection::new(10_000, SizeDistribution::LogNormal { median: 1e-6, geometric_sd: 2.0 }, 1500.0);
-    let result = run(&scene, &particles)?; // on the current rayon pool
+    let mut settings = RunSettings::new(0.05, 600.0); // dt, duration (s)
+    settings.average_from = 60.0; // averages over [60 s, 600 s]
+    let result = run(&scene, &settings, &particles)?; // on the current rayon pool
     let floor = result.deposition_velocity(&[0]); // v_d onto the floor, m/s
     let beta = result.loss_rate(); // 1/s
     let curve = result.decay_curve(40); // N(t)/N(0) at 41 times from the release

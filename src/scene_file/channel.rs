@@ -66,8 +66,9 @@ pub(super) fn channel(input: &SceneInput) -> Result<ChannelScene, Error> {
     scene.geometry = Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 2.0 * re_tau * unit };
     scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
     let (dt_plus, duration_plus) = (file.run.dt_plus.unwrap_or(0.2), file.run.duration_plus.unwrap_or(3000.0));
-    scene.dt = dt_plus * time;
-    scene.duration = duration_plus * time;
+    let settings = &mut study.settings;
+    settings.dt = dt_plus * time;
+    settings.duration = duration_plus * time;
     if file.run.dt.is_some() || file.run.duration.is_some() {
         return Err(
             src.at(&["run.dt", "run.duration"], "a channel takes `run.dt_plus` and `run.duration_plus` in wall units")
@@ -80,10 +81,10 @@ pub(super) fn channel(input: &SceneInput) -> Result<ChannelScene, Error> {
             format!("`run.dt_plus` = {dt_plus} is longer than the run, `run.duration_plus` = {duration_plus}"),
         ));
     }
-    set(&mut scene.seed, file.run.seed);
+    set(&mut settings.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
-    apply_run_choices(&src, scene, &file.run)?;
+    apply_run_choices(&src, (scene, settings), &file.run)?;
     if file.run.excursions == Some(false) {
         study.excursions_below = 0.0;
     }

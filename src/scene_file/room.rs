@@ -97,12 +97,13 @@ pub(super) fn room_scene(input: &SceneInput) -> Result<RoomScene, Error> {
         set(&mut blend_length, file.flow.blend_length);
         scene.flow = Flow::TurbulentRoom { friction_velocity, core_rms, core_time, blend_length };
     }
-    set(&mut scene.dt, file.run.dt);
-    set(&mut scene.duration, file.run.duration);
-    set(&mut scene.seed, file.run.seed);
+    let settings = &mut study.settings;
+    set(&mut settings.dt, file.run.dt);
+    set(&mut settings.duration, file.run.duration);
+    set(&mut settings.seed, file.run.seed);
     set(&mut scene.brownian, file.run.brownian);
     set(&mut scene.lift, file.run.lift);
-    apply_run_choices(&src, scene, &file.run)?;
+    apply_run_choices(&src, (scene, settings), &file.run)?;
     set(&mut study.excursions, file.run.excursions);
     scene.gravity = gravity(file.run.gravity.unwrap_or(STANDARD_GRAVITY));
     if file.run.dt_plus.is_some() || file.run.duration_plus.is_some() {
@@ -111,10 +112,10 @@ pub(super) fn room_scene(input: &SceneInput) -> Result<RoomScene, Error> {
         );
     }
     check_duration(&src, "run.duration", file.run.duration)?;
-    if scene.dt > scene.duration {
+    if settings.dt > settings.duration {
         return Err(src.at(
             &["run.dt", "run.duration"],
-            format!("`run.dt` = {} s is longer than the run, `run.duration` = {} s", scene.dt, scene.duration),
+            format!("`run.dt` = {} s is longer than the run, `run.duration` = {} s", settings.dt, settings.duration),
         ));
     }
     apply_walls(&src, scene, &file.walls)?;

@@ -1,7 +1,7 @@
 //! `[run]`: the time step and length, the seed, the physics switched on, the drag law, the
 //! scheme and the near-wall model; and the checks of counts and lengths a run needs.
 
-use depo_tracker::{Correlation, Drag, Geometry, NearWall, Scene, Scheme, WallFunction};
+use depo_tracker::{Correlation, Drag, Geometry, NearWall, RunSettings, Scene, Scheme, WallFunction};
 use serde::Deserialize;
 
 use super::{named, set, Error, SceneSource};
@@ -38,11 +38,15 @@ pub(super) struct RunFile {
 /// The run's named choices where the file makes them: the drag law, the step (the studies offer
 /// the exponential scheme and its midpoint form; Euler is for the integrator benchmark), the
 /// near-wall model and what it steps.
-pub(super) fn apply_run_choices(src: &SceneSource, scene: &mut Scene, run: &RunFile) -> Result<(), Error> {
+pub(super) fn apply_run_choices(
+    src: &SceneSource,
+    (scene, settings): (&mut Scene, &mut RunSettings),
+    run: &RunFile,
+) -> Result<(), Error> {
     let drag = [("stokes", Drag::Stokes), ("schiller-naumann", Drag::SchillerNaumann)];
     set(&mut scene.drag, named(src, "run.drag", run.drag.as_deref(), &drag)?);
     let schemes = [("exponential", Scheme::Exponential), ("midpoint", Scheme::Midpoint)];
-    set(&mut scene.scheme, named(src, "run.scheme", run.scheme.as_deref(), &schemes)?);
+    set(&mut settings.scheme, named(src, "run.scheme", run.scheme.as_deref(), &schemes)?);
     let models = [
         ("gaussian", Some(NearWall::Gaussian)),
         ("intermittent", Some(NearWall::Intermittent)),

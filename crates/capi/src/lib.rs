@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: the C ABI's entry points, each a thin checked wrapper.
+//!
 //! # libdepo: the C ABI of depo
 //!
 //! Lets C, C++ and Fortran solvers apply the Brach & Dunn wall law to their own particle

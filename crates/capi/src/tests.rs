@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: the C ABI's entry points tested from Rust.
+//!
 //! Every entry point from the Rust side: NULLs, zero lengths, NaN and infinity, extreme values,
 //! random batches against the `wall-model` crate, and f64 against f32.
 

@@ -7,18 +7,17 @@
 //! `cargo bench -p depo-tracker --bench tracking`; criterion's "thrpt" is particle-steps/s.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use depo_tracker::{run, Flow, Geometry, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
+use depo_tracker::{run, Flow, Geometry, Injection, RunSettings, Scene, Scheme, SizeDistribution, WallBehaviour};
 use depo_wall_model::WallLaw;
 
-fn scene(turbulent: bool, scheme: Scheme) -> Scene {
+fn scene(turbulent: bool) -> Scene {
     let law = WallLaw::preset("dunn1995-stainless").unwrap();
-    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.01, 2.0)
-        .with_walls(WallBehaviour::Law { law, size: None });
+    let mut scene =
+        Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }).with_walls(WallBehaviour::Law { law, size: None });
     if turbulent {
         scene.flow = Flow::indoor_room();
         scene.brownian = true;
     }
-    scene.scheme = scheme;
     scene
 }
 
@@ -31,11 +30,12 @@ fn tracking(c: &mut Criterion) {
         ("+turbulence+brownian", true, Scheme::Exponential),
         ("+turbulence+brownian, midpoint", true, Scheme::Midpoint),
     ] {
-        let scene = scene(turbulent, scheme);
-        let steps = run(&scene, &injection).unwrap().particle_steps();
+        let scene = scene(turbulent);
+        let settings = RunSettings { scheme, ..RunSettings::new(0.01, 2.0) };
+        let steps = run(&scene, &settings, &injection).unwrap().particle_steps();
         group.throughput(Throughput::Elements(steps));
         group.bench_with_input(BenchmarkId::new(name, injection.count), &scene, |b, scene| {
-            b.iter(|| run(scene, &injection).unwrap())
+            b.iter(|| run(scene, &settings, &injection).unwrap())
         });
     }
     group.finish();

@@ -13,8 +13,10 @@
 //! - [`model`]: what is simulated. The domain ([`Geometry`]: a room or a plane channel), the
 //!   [`Air`] and one particle in it, the mean [`Flow`] as a scene states it, [`Furnishing`]s,
 //!   [`Opening`]s and the potential flow between them, what each surface does
-//!   ([`WallBehaviour`], [`WallFunction`]), the near-wall [`Excursions`] a scene asks for, the
-//!   [`Injection`], and the [`Scene`] that holds them, validated once in [`Scene::validate`].
+//!   ([`WallBehaviour`], [`WallFunction`]), the [`Injection`], and the [`Scene`] that holds
+//!   them, validated once in [`Scene::validate`]; beside the scene, how a run is estimated,
+//!   [`RunSettings`] (time step, [`Scheme`], duration, seed, averaging window, near-wall
+//!   [`Excursions`]).
 //! - [`physics`]: the physics of one particle: turbulence profiles and the dispersion model
 //!   tabulated once per run (Gaussian near-wall statistics), the intermittent near-wall model,
 //!   the deposition correlations and the wall function on them, random streams.
@@ -28,7 +30,7 @@
 //!   distributions, filtration, the steady state, the variance reduction's efficiency, and
 //!   measurements to compare with.
 //!
-//! A scene and an injection go down to the tracking layer through [`run()`]; a study calls
+//! A scene, its run settings and an injection go down to the tracking layer through [`run()`]; a study calls
 //! [`run()`] per particle size and reads the [`Run`]s it returns. The modules' paths from before
 //! the layers (`depo_tracker::scene`, `depo_tracker::flow`, `depo_tracker::studies`, ...) are
 //! kept as aliases. docs/ARCHITECTURE.md draws the data flow.
@@ -36,12 +38,13 @@
 //! SI units throughout; `z` is up in a room and wall-normal in a channel.
 //!
 //! ```
-//! use depo_tracker::{run, Geometry, Injection, Scene, SizeDistribution};
+//! use depo_tracker::{run, Geometry, Injection, RunSettings, Scene, SizeDistribution};
 //!
 //! // 10 um particles settling in still air onto the floor of a 1 m box, for 10 s.
-//! let scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.01, 10.0);
+//! let scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] });
+//! let settings = RunSettings::new(0.01, 10.0);
 //! let particles = Injection::new(2000, SizeDistribution::Monodisperse { diameter: 10e-6 }, 1000.0);
-//! let result = run(&scene, &particles).unwrap();
+//! let result = run(&scene, &settings, &particles).unwrap();
 //! let balance = result.balance();
 //! assert_eq!(balance.airborne + balance.deposited.iter().sum::<usize>() + balance.escaped, 2000);
 //! // Settling at 3 mm/s clears about 3 cm of the 1 m height in 10 s.
@@ -75,6 +78,7 @@ pub mod flow {
 pub mod scene {
     pub use crate::model::error::*;
     pub use crate::model::scene::*;
+    pub use crate::model::settings::*;
     pub use crate::model::walls::WallBehaviour;
 }
 /// The deposition wall function: its settings ([`model::walls`]) and physics
@@ -108,7 +112,7 @@ pub use furnishing::Furnishing;
 pub use geometry::{Geometry, Orientation, Wall};
 pub use openings::{Opening, OpeningKind};
 pub use run::{binomial_error, delta_error, run, run_more, Balance, Cancel, Estimate, Run};
-pub use scene::{Drag, Injection, NearWall, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
+pub use scene::{Drag, Injection, NearWall, RunSettings, Scene, SceneError, Scheme, SizeDistribution, WallBehaviour};
 pub use tracking::{
     Fate, Landed, ParticleTally, Record, WallTally, CONTINUITY_CORRECTION, MAX_CONTACTS, NEAR_FLOOR_SHARE,
 };

@@ -7,31 +7,32 @@ use std::time::{Duration, Instant};
 
 use depo_tracker::studies::RoomStudy;
 use depo_tracker::{
-    run, Cancel, Correlation, Excursions, Injection, Scene, Scheme, SizeDistribution, WallBehaviour, WallFunction,
+    run, Cancel, Correlation, Excursions, Injection, RunSettings, Scene, Scheme, SizeDistribution, WallBehaviour,
+    WallFunction,
 };
 
 /// The default room's turbulence and Brownian motion for `duration` s, its walls mirrors so
 /// that every particle stays in the air to the end: each particle's run costs its steps,
 /// whatever its fate would have been.
-fn endless_room(duration: f64) -> Scene {
-    let mut scene = RoomStudy::default().scene;
+fn endless_room(duration: f64) -> (Scene, RunSettings) {
+    let RoomStudy { mut scene, mut settings, .. } = RoomStudy::default();
     scene.walls = vec![WallBehaviour::Reflect; scene.walls.len()];
-    scene.duration = duration;
-    scene.average_from = 0.0;
-    scene
+    settings.duration = duration;
+    settings.average_from = 0.0;
+    (scene, settings)
 }
 
 /// The scenes, one per particle loop, by name.
-fn scenes(duration: f64) -> Vec<(&'static str, Scene)> {
+fn scenes(duration: f64) -> Vec<(&'static str, (Scene, RunSettings))> {
     let one_at_a_time = endless_room(duration); // the midpoint scheme: one particle at a time
     let mut side_by_side = endless_room(duration);
-    side_by_side.scheme = Scheme::Exponential;
-    side_by_side.dt = 0.05; // the default scheme's longest step in this turbulence
+    side_by_side.1.scheme = Scheme::Exponential;
+    side_by_side.1.dt = 0.05; // the default scheme's longest step in this turbulence
     let mut excursions = endless_room(duration);
-    let nu = excursions.air.kinematic_viscosity();
-    excursions.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
+    let nu = excursions.0.air.kinematic_viscosity();
+    excursions.1.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
     let mut wall_function = endless_room(duration);
-    wall_function.wall_function = Some(WallFunction::new(Correlation::LaiNazaroff));
+    wall_function.0.wall_function = Some(WallFunction::new(Correlation::LaiNazaroff));
     vec![
         ("one particle at a time", one_at_a_time),
         ("four side by side", side_by_side),
@@ -53,10 +54,10 @@ fn injection(count: usize) -> Injection {
 #[test]
 fn a_cancelled_run_of_long_particle_runs_stops_within_a_second() {
     const DURATION: f64 = 3.6e6;
-    let timed = |scene: &Scene| {
+    let timed = |(scene, settings): &(Scene, RunSettings)| {
         let start = Instant::now();
-        let one = run(scene, &injection(1)).unwrap();
-        assert_eq!(one.records[0].steps as f64, (scene.duration / scene.dt).round(), "not airborne to the end");
+        let one = run(scene, settings, &injection(1)).unwrap();
+        assert_eq!(one.records[0].steps as f64, (settings.duration / settings.dt).round(), "not airborne to the end");
         start.elapsed().as_secs_f64()
     };
     let [half, short, long] = [200.0, 100.0, 1.0].map(|share| scenes(DURATION / share));
@@ -71,7 +72,7 @@ fn a_cancelled_run_of_long_particle_runs_stops_within_a_second() {
                 cancel.cancel();
                 Instant::now()
             });
-            let result = cancel.watch(|| run(&long, &injection(16)));
+            let result = cancel.watch(|| run(&long.0, &long.1, &injection(16)));
             let done = Instant::now();
             (result, done - asked.join().unwrap())
         });

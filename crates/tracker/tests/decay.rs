@@ -5,17 +5,29 @@
 use depo_tracker::decay::MIN_AIRBORNE;
 use depo_tracker::studies::RoomStudy;
 use depo_tracker::{
-    delta_error, log_linear_fit, run, Excursions, Fate, Geometry, Injection, Scene, SizeDistribution, WallBehaviour,
+    delta_error, log_linear_fit, run, Excursions, Fate, Geometry, Injection, Run, RunSettings, Scene, SceneError,
+    SizeDistribution, WallBehaviour,
 };
 
+/// A scene and its run settings.
+type Setup = (Scene, RunSettings);
+
+/// [`run`] of a scene with its settings.
+fn run_in((scene, settings): &Setup, injection: &Injection) -> Result<Run, SceneError> {
+    run(scene, settings, injection)
+}
+
+/// 400 s of 2 s steps, averaged from 40 s on, with `seed`.
+fn settings(seed: u64) -> RunSettings {
+    RunSettings { average_from: 40.0, seed, ..RunSettings::new(2.0, 400.0) }
+}
+
 /// Mirror walls, still air, no gravity: nothing deposits, ventilation alone takes particles.
-fn ventilated_box(a: f64, seed: u64) -> Scene {
-    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 2.0, 400.0).with_walls(WallBehaviour::Reflect);
+fn ventilated_box(a: f64, seed: u64) -> Setup {
+    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }).with_walls(WallBehaviour::Reflect);
     scene.gravity = [0.0; 3];
     scene.air_exchange = a;
-    scene.average_from = 40.0;
-    scene.seed = seed;
-    scene
+    (scene, settings(seed))
 }
 
 /// Sink-free (reflecting walls): the fitted total loss rate is the exchange rate `a` within
@@ -24,7 +36,7 @@ fn ventilated_box(a: f64, seed: u64) -> Scene {
 fn ventilation_alone_fits_the_exchange_rate() {
     let a = 0.005;
     let injection = Injection::new(4000, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-    let result = run(&ventilated_box(a, 7), &injection).unwrap();
+    let result = run_in(&ventilated_box(a, 7), &injection).unwrap();
     let curve = result.decay_curve(40);
     assert_eq!(curve.times.len(), 41);
     assert_eq!((curve.times[0], curve.times[40]), (0.0, 400.0));
@@ -52,7 +64,7 @@ fn the_fit_error_is_the_spread_over_independent_runs() {
     let (mut deviations, mut errors) = (0.0, 0.0);
     let seeds = 100;
     for seed in 0..seeds {
-        let result = run(&ventilated_box(a, 100 + seed), &injection).unwrap();
+        let result = run_in(&ventilated_box(a, 100 + seed), &injection).unwrap();
         let fit = result.decay_fit(&result.decay_curve(40), a).expect("a fit");
         deviations += (fit.total.value - a).powi(2);
         errors += fit.total.error;
@@ -74,7 +86,7 @@ fn the_fit_error_is_the_spread_over_independent_runs() {
 #[test]
 fn fitted_beta_agrees_with_the_study_beta_where_both_resolve() {
     let mut study = RoomStudy { diameters: vec![10e-6], count: 800, target_error: None, ..RoomStudy::default() };
-    study.scene.duration = 900.0;
+    study.settings.duration = 900.0;
     study.scene.air_exchange = 1.0 / 3600.0;
     let point = &study.run(|_| {}).unwrap()[0];
     let fit = point.decay_fit.expect("a fit");
@@ -98,15 +110,15 @@ fn fitted_beta_agrees_with_the_study_beta_where_both_resolve() {
 /// without them (3 um, where the tracked particles deposit and excursions run).
 #[test]
 fn the_decay_curve_does_not_depend_on_excursions() {
-    let mut scene = RoomStudy::default().scene;
-    scene.duration = 300.0;
-    scene.average_from = 30.0;
+    let RoomStudy { mut scene, mut settings, .. } = RoomStudy::default();
+    settings.duration = 300.0;
+    settings.average_from = 30.0;
     scene.air_exchange = 2.0 / 3600.0;
     let injection = Injection::new(300, SizeDistribution::Monodisperse { diameter: 3e-6 }, 1000.0);
-    let plain = run(&scene, &injection).unwrap();
+    let plain = run(&scene, &settings, &injection).unwrap();
     let nu = scene.air.kinematic_viscosity();
-    scene.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
-    let split = run(&scene, &injection).unwrap();
+    settings.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
+    let split = run(&scene, &settings, &injection).unwrap();
     assert!(split.particles.iter().any(|p| p.excursions > 0 && p.deposited.iter().sum::<f64>() > 0.0));
     let (a, b) = (plain.decay_curve(40), split.decay_curve(40));
     assert_eq!(a, b);
@@ -127,12 +139,10 @@ const A_SETTLING: f64 = 1.0 / 3600.0;
 /// A ventilated box of 10 um particles settling in still air onto an absorbing floor:
 /// deposition that plain tracking resolves (about 40 % of 1000 particles deposit within the
 /// window), beside ventilation, cheap enough to run hundreds of times.
-fn settling_box(seed: u64) -> Scene {
-    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 2.0, 400.0);
+fn settling_box(seed: u64) -> Setup {
+    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] });
     scene.air_exchange = A_SETTLING;
-    scene.average_from = 40.0;
-    scene.seed = seed;
-    scene
+    (scene, settings(seed))
 }
 
 /// The fitted `beta` and the run's own `loss_rate` come from the same particles (a particle
@@ -152,7 +162,7 @@ fn the_paired_error_is_the_spread_of_the_difference_over_seeds() {
     let (mut differences, mut fitted) = (Vec::new(), Vec::new());
     let (mut paired, mut independent, mut fit_error) = (0.0, 0.0, 0.0);
     for seed in 0..seeds {
-        let result = run(&settling_box(300 + seed), &injection).unwrap();
+        let result = run_in(&settling_box(300 + seed), &injection).unwrap();
         let fit = result.decay_fit(&result.decay_curve(40), A_SETTLING).expect("a fit");
         let study = result.loss_rate();
         assert!(fit.beta.events > 200 && study.events > 200, "{fit:?} {study:?}");
@@ -181,7 +191,7 @@ fn the_paired_error_is_the_spread_of_the_difference_over_seeds() {
 #[test]
 fn the_loss_rate_error_is_the_delta_error_of_its_influences() {
     let injection = Injection::new(500, SizeDistribution::Monodisperse { diameter: 10e-6 }, 1000.0);
-    let result = run(&settling_box(1), &injection).unwrap();
+    let result = run_in(&settling_box(1), &injection).unwrap();
     let influences = result.loss_rate_influences().unwrap();
     let beta = result.loss_rate();
     assert_eq!(influences.len(), 500);
@@ -194,10 +204,10 @@ fn the_loss_rate_error_is_the_delta_error_of_its_influences() {
 #[test]
 fn no_z_without_deposits_or_departures() {
     let injection = Injection::new(500, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-    let result = run(&ventilated_box(0.005, 3), &injection).unwrap();
+    let result = run_in(&ventilated_box(0.005, 3), &injection).unwrap();
     let fit = result.decay_fit(&result.decay_curve(40), 0.005).unwrap();
     assert!(fit.beta.error > 0.0 && fit.against_loss_rate.z.is_none(), "{fit:?}");
-    let sealed = run(&ventilated_box(0.0, 3), &injection).unwrap();
+    let sealed = run_in(&ventilated_box(0.0, 3), &injection).unwrap();
     let fit = sealed.decay_fit(&sealed.decay_curve(40), 0.0).unwrap();
     assert_eq!((fit.total.value, fit.total.error, fit.total.events), (0.0, 0.0, 0));
     assert!(fit.against_loss_rate.z.is_none(), "{fit:?}");
@@ -211,7 +221,7 @@ fn no_z_without_deposits_or_departures() {
 #[test]
 fn the_bound_without_deposits_is_the_rule_of_three() {
     let injection = Injection::new(1000, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-    let result = run(&ventilated_box(0.005, 3), &injection).unwrap();
+    let result = run_in(&ventilated_box(0.005, 3), &injection).unwrap();
     let curve = result.decay_curve(40);
     let fit = result.decay_fit(&curve, 0.005).unwrap();
     assert!(fit.beta.events == 0 && fit.beta.value < -fit.beta.error, "{fit:?}");
@@ -226,14 +236,14 @@ fn the_bound_without_deposits_is_the_rule_of_three() {
 #[test]
 fn the_window_ends_before_fewer_than_min_airborne_remain() {
     let injection = Injection::new(200, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-    let result = run(&ventilated_box(0.02, 1), &injection).unwrap();
+    let result = run_in(&ventilated_box(0.02, 1), &injection).unwrap();
     let curve = result.decay_curve(40);
     let fit = result.decay_fit(&curve, 0.02).unwrap();
     let last = curve.times.iter().position(|&t| t == fit.window[1]).unwrap();
     assert!(curve.counts[last] >= MIN_AIRBORNE && curve.counts[last + 1] < MIN_AIRBORNE, "{:?}", curve.counts);
     assert!(curve.times[last] < 200.0 && fit.points == last + 1 - 4, "{fit:?}");
     // Too few left for three sample times after the window's start: no fit.
-    let result = run(&ventilated_box(0.05, 1), &injection).unwrap();
+    let result = run_in(&ventilated_box(0.05, 1), &injection).unwrap();
     assert_eq!(result.decay_fit(&result.decay_curve(40), 0.05), None);
 }
 
@@ -243,7 +253,7 @@ fn the_window_ends_before_fewer_than_min_airborne_remain() {
 #[test]
 fn uneven_sample_steps_are_whole_steps() {
     let injection = Injection::new(1000, SizeDistribution::Monodisperse { diameter: 10e-6 }, 1000.0);
-    let result = run(&settling_box(5), &injection).unwrap();
+    let result = run_in(&settling_box(5), &injection).unwrap();
     let curve = result.decay_curve(7);
     assert_eq!(curve.steps, [0, 29, 57, 86, 114, 143, 171, 200]);
     let times: Vec<f64> = curve.steps.iter().map(|&n| n as f64 * 2.0).collect();
@@ -263,6 +273,6 @@ fn uneven_sample_steps_are_whole_steps() {
 #[should_panic(expected = "not this run's")]
 fn a_curve_from_another_run_is_refused() {
     let injection = Injection::new(300, SizeDistribution::Monodisperse { diameter: 10e-6 }, 1000.0);
-    let (one, other) = (run(&settling_box(1), &injection).unwrap(), run(&settling_box(2), &injection).unwrap());
+    let (one, other) = (run_in(&settling_box(1), &injection).unwrap(), run_in(&settling_box(2), &injection).unwrap());
     let _ = one.decay_fit(&other.decay_curve(40), A_SETTLING);
 }

@@ -9,7 +9,7 @@ use depo_tracker::Geometry;
 fn small_room(count: usize, duration: f64) -> RoomStudy {
     let mut study = RoomStudy { count, target_error: None, excursions: false, ..RoomStudy::default() };
     study.scene.geometry = Geometry::Room { size: [1.0, 1.0, 1.0] };
-    study.scene.duration = duration;
+    study.settings.duration = duration;
     study
 }
 

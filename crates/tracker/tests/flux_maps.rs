@@ -3,7 +3,8 @@
 
 use depo_tracker::maps::{FluxMap, MAP_RESOLVED_ERROR};
 use depo_tracker::{
-    run, Correlation, Excursions, Flow, Furnishing, Geometry, Injection, Scene, SizeDistribution, WallFunction,
+    run, Correlation, Excursions, Flow, Furnishing, Geometry, Injection, RunSettings, Scene, SizeDistribution,
+    WallFunction,
 };
 
 fn mono(count: usize, diameter: f64) -> Injection {
@@ -25,14 +26,15 @@ fn extent(scene: &Scene, furnishing: Option<usize>) -> ([f64; 3], [f64; 3]) {
 /// of the smallest deposits over its area.
 #[test]
 fn cells_add_up_to_each_surface_s_figure() {
-    let mut scene = Scene::new(Geometry::Room { size: [1.5, 1.0, 1.0] }, 0.05, 300.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.5, 1.0, 1.0] });
+    let mut settings = RunSettings::new(0.05, 300.0);
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
-    scene.average_from = 20.0;
+    settings.average_from = 20.0;
     scene.furnishings = vec![Furnishing::new([0.2, 0.2, 0.4], [0.8, 0.8, 0.45]).named("table")];
     let nu = scene.air.kinematic_viscosity();
-    scene.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
-    let result = run(&scene, &mono(400, 0.02e-6)).unwrap();
+    settings.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
+    let result = run(&scene, &settings, &mono(400, 0.02e-6)).unwrap();
     let mut mapped = 0;
     for w in &result.walls {
         let figure = result.deposition_velocity(&[w.id]);
@@ -74,10 +76,11 @@ fn cells_add_up_to_each_surface_s_figure() {
 #[test]
 fn pure_settling_gives_a_flat_floor() {
     let (h, t0, t1) = (1.0, 5.0, 30.0);
-    let mut scene = Scene::new(Geometry::Room { size: [2.0, 1.0, h] }, 0.1, t1);
-    scene.average_from = t0;
+    let scene = Scene::new(Geometry::Room { size: [2.0, 1.0, h] });
+    let mut settings = RunSettings::new(0.1, t1);
+    settings.average_from = t0;
     let d = 30e-6;
-    let result = run(&scene, &mono(20_000, d)).unwrap();
+    let result = run(&scene, &settings, &mono(20_000, d)).unwrap();
     let floor = result.resolved_flux_map(0, [0.0; 3], scene.geometry.size()).unwrap();
     assert!(floor.bins[0] >= 8 && floor.bins[1] >= 4, "{:?}", floor.bins);
     assert!(floor.resolved_share() >= 0.75);
@@ -111,10 +114,11 @@ fn pure_settling_gives_a_flat_floor() {
 /// one that would not add up to their figure.
 #[test]
 fn the_wall_function_s_walls_have_no_map() {
-    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.05, 30.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] });
+    let settings = RunSettings::new(0.05, 30.0);
     scene.flow = Flow::indoor_room();
     scene.wall_function = Some(WallFunction::new(Correlation::LaiNazaroff));
-    let result = run(&scene, &mono(100, 5e-6)).unwrap();
+    let result = run(&scene, &settings, &mono(100, 5e-6)).unwrap();
     let map: Option<FluxMap> = result.resolved_flux_map(0, [0.0; 3], [1.0; 3]);
     assert!(result.deposition_velocity(&[0]).value > 0.0);
     assert_eq!(map, None);

@@ -1,7 +1,8 @@
 //! Furnishings: boxes inside a room whose faces are surfaces (`depo_tracker::furnishing`).
 
 use depo_tracker::{
-    run, Drag, Fate, Flow, Furnishing, Geometry, Injection, Orientation, Record, Scene, SizeDistribution, WallBehaviour,
+    run, Drag, Fate, Flow, Furnishing, Geometry, Injection, Orientation, Record, RunSettings, Scene, SizeDistribution,
+    WallBehaviour,
 };
 use depo_wall_model::WallLaw;
 
@@ -13,9 +14,9 @@ fn mono(count: usize, diameter: f64) -> Injection {
 }
 
 /// A small turbulent, ventilated room with a table (a wall law on its faces) and a shelf
-/// (mirrors), Brownian motion and finite-Reynolds drag.
-fn furnished_room() -> (Scene, Injection) {
-    let mut scene = Scene::new(Geometry::Room { size: [0.5, 0.4, 0.3] }, 0.01, 20.0);
+/// (mirrors), Brownian motion and finite-Reynolds drag; 20 s of 10 ms steps.
+fn furnished_room() -> (Scene, RunSettings, Injection) {
+    let mut scene = Scene::new(Geometry::Room { size: [0.5, 0.4, 0.3] });
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
     scene.drag = Drag::SchillerNaumann;
@@ -29,7 +30,7 @@ fn furnished_room() -> (Scene, Injection) {
     ];
     scene.furnishings[0].faces[0] = WallBehaviour::Sink;
     let injection = Injection::new(3000, SizeDistribution::LogNormal { median: 3e-6, geometric_sd: 2.5 }, 2000.0);
-    (scene, injection)
+    (scene, RunSettings::new(0.01, 20.0), injection)
 }
 
 /// Injected = airborne + deposited per surface (walls and faces) + escaped + exhausted, exactly,
@@ -48,8 +49,8 @@ fn furnished_room() -> (Scene, Injection) {
 /// exponential, and drawn apart from the motion).
 #[test]
 fn mass_balance_is_exact_with_furnishings_and_ventilation() {
-    let (scene, injection) = furnished_room();
-    let result = run(&scene, &injection).unwrap();
+    let (scene, settings, injection) = furnished_room();
+    let result = run(&scene, &settings, &injection).unwrap();
     check_records(&scene, &injection, &result);
     let b = result.balance();
     assert_eq!(result.walls.len(), 6 + 12);
@@ -100,13 +101,13 @@ fn mass_balance_is_exact_with_furnishings_and_ventilation() {
     assert_eq!(result.surfaces_facing(Orientation::Floor), vec![0, 7, 13]);
     assert_eq!(result.walls_facing(Orientation::Floor), vec![0]);
     // The uniform exhaust against the closed room.
-    let closed = run(&Scene { air_exchange: 0.0, ..scene.clone() }, &injection).unwrap();
+    let closed = run(&Scene { air_exchange: 0.0, ..scene.clone() }, &settings, &injection).unwrap();
     assert_eq!(closed.balance().exhausted, 0);
     let (mut stayed, mut left) = (0usize, 0usize);
     for (open, closed) in result.records.iter().zip(&closed.records) {
         assert_eq!(open.start, closed.start);
         if open.fate == Fate::Exhausted {
-            assert!(open.time == open.steps as f64 * scene.dt && open.steps < closed.steps, "{open:?} {closed:?}");
+            assert!(open.time == open.steps as f64 * settings.dt && open.steps < closed.steps, "{open:?} {closed:?}");
         } else {
             assert_eq!(open, closed);
         }
@@ -124,11 +125,11 @@ fn mass_balance_is_exact_with_furnishings_and_ventilation() {
 /// The same seed gives the same furnished run on one thread and on two.
 #[test]
 fn furnished_runs_do_not_depend_on_the_thread_count() {
-    let (scene, injection) = furnished_room();
+    let (scene, settings, injection) = furnished_room();
     let injection = Injection { count: 600, ..injection };
     let on = |threads| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| run(&scene, &injection).unwrap())
+        pool.install(|| run(&scene, &settings, &injection).unwrap())
     };
     let (one, two) = (on(1), on(2));
     assert_eq!(one.records, two.records);
@@ -152,13 +153,14 @@ fn settling_onto_a_table_top_deposits_at_the_settling_velocity() {
         let duration = 100.0;
         let h = 2.0 * vs * duration;
         let (top, low) = (0.4, [0.3, 0.3, 0.3]);
-        let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, top + 3.0 * h] }, duration / 400.0, duration);
+        let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, top + 3.0 * h] });
+        let settings = RunSettings::new(duration / 400.0, duration);
         scene.furnishings = vec![Furnishing::new(low, [0.7, 0.7, top])];
         let n = 20_000;
         // Over the table's top, up to `h` above it; the first `r` is inside the grown box and
         // never drawn: the release is uniform over a height `h - r`.
         let injection = mono(n, d).within([0.3, 0.3, top], [0.7, 0.7, top + h]);
-        let result = run(&scene, &injection).unwrap();
+        let result = run(&scene, &settings, &injection).unwrap();
         let b = result.balance();
         let deposited = b.deposited[6 + 1];
         assert_eq!(b.deposited.iter().sum::<usize>(), deposited, "only the top collects");
@@ -179,7 +181,8 @@ fn settling_onto_a_table_top_deposits_at_the_settling_velocity() {
 /// shadow, and left the floor's share at 0.80.
 #[test]
 fn a_reflecting_box_leaves_tracers_well_mixed() {
-    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.01, 60.0).with_walls(WallBehaviour::Reflect);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }).with_walls(WallBehaviour::Reflect);
+    let settings = RunSettings::new(0.01, 60.0);
     scene.gravity = [0.0; 3];
     scene.flow = Flow::indoor_room();
     let (low, high) = ([0.3, 0.3, 0.3], [0.7, 0.7, 0.6]);
@@ -191,7 +194,7 @@ fn a_reflecting_box_leaves_tracers_well_mixed() {
     // Within 2 cm of the room's floor (below the box).
     let floor_expected = n as f64 * 0.02 / scene.free_volume();
     let shares = |scene: &Scene| {
-        let result = run(scene, &mono(n, 1e-9)).unwrap();
+        let result = run(scene, &settings, &mono(n, 1e-9)).unwrap();
         assert_eq!(result.balance().airborne, n);
         let count =
             |near: &dyn Fn(&[f64; 3]) -> bool| result.records.iter().filter(|r| near(&r.position)).count() as f64;
@@ -211,7 +214,9 @@ fn a_reflecting_box_leaves_tracers_well_mixed() {
 /// into.
 #[test]
 fn furnishing_errors_name_the_field() {
-    let base = Scene::new(Geometry::Room { size: [2.0, 2.0, 2.0] }, 0.01, 1.0);
+    let base = Scene::new(Geometry::Room { size: [2.0, 2.0, 2.0] });
+    let settings = RunSettings::new(0.01, 1.0);
+    let run = |scene: &Scene, injection: &Injection| run(scene, &settings, injection);
     let injection = mono(10, 1e-6);
     let with = |boxes: Vec<Furnishing>| Scene { furnishings: boxes, ..base.clone() };
     let err = run(&with(vec![Furnishing::new([0.0, 0.5, 0.5], [1.0, 1.0, 1.0])]), &injection).unwrap_err();
@@ -244,12 +249,12 @@ fn furnishing_errors_name_the_field() {
 /// times faster.
 #[test]
 fn box_faces_take_the_walls_deposition_velocity() {
-    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.05, 600.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] });
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
-    scene.average_from = 60.0;
+    let settings = RunSettings { average_from: 60.0, ..RunSettings::new(0.05, 600.0) };
     scene.furnishings = vec![Furnishing::new([0.3, 0.3, 0.3], [0.7, 0.7, 0.7])];
-    let result = run(&scene, &mono(4000, 0.01e-6)).unwrap();
+    let result = run(&scene, &settings, &mono(4000, 0.01e-6)).unwrap();
     let walls = result.walls_facing(Orientation::Wall);
     let sides: Vec<usize> = result.furnishing_faces(0)[2..].to_vec();
     let (room, boxed) = (result.deposition_velocity(&walls), result.deposition_velocity(&sides));
@@ -294,9 +299,9 @@ fn excursions_sampled_by_class_of_crossing_agree_with_plain_tracking() {
 /// a good share of the deposits on the table's top.
 #[test]
 fn the_loss_rate_s_influences_count_the_furnishings() {
-    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.05, 60.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] });
     scene.furnishings = vec![Furnishing::new([0.2, 0.2, 0.3], [0.8, 0.8, 0.4])];
-    let result = run(&scene, &mono(2000, 10e-6)).unwrap();
+    let result = run(&scene, &RunSettings::new(0.05, 60.0), &mono(2000, 10e-6)).unwrap();
     let on_top = result.balance().deposited[6 + 1];
     assert!(on_top > 100, "{on_top} on the top");
     let (influences, beta) = (result.loss_rate_influences().unwrap(), result.loss_rate());
@@ -308,20 +313,20 @@ fn the_loss_rate_s_influences_count_the_furnishings() {
 /// `class_sampling` ([`depo_tracker::Excursions::class_sampling`]): the box's faces and the
 /// loss rate within 3 combined standard errors. The excursions' run.
 fn excursions_agree_with_plain_tracking_in_a_box_room(class_sampling: [f64; 4]) -> depo_tracker::Run {
-    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.05, 600.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] });
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
-    scene.average_from = 60.0;
+    let settings = RunSettings { average_from: 60.0, ..RunSettings::new(0.05, 600.0) };
     scene.furnishings = vec![Furnishing::new([0.3, 0.3, 0.3], [0.7, 0.7, 0.7])];
     let injection = mono(400, 0.01e-6);
-    let plain = run(&scene, &Injection { count: 4000, ..injection }).unwrap();
-    let mut split = scene.clone();
+    let plain = run(&scene, &settings, &Injection { count: 4000, ..injection }).unwrap();
+    let mut split = settings.clone();
     split.seed += 1;
-    let nu = split.air.kinematic_viscosity();
+    let nu = scene.air.kinematic_viscosity();
     let excursions = depo_tracker::Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0);
-    let calibrated = excursions.calibrated(&split, &injection, 100, 1, 8).unwrap().0;
+    let calibrated = excursions.calibrated(&scene, &split, &injection, 100, 1, 8).unwrap().0;
     split.excursions = Some(depo_tracker::Excursions { class_sampling, ..calibrated });
-    let split = run(&split, &injection).unwrap();
+    let split = run(&scene, &split, &injection).unwrap();
     let faces = plain.furnishing_faces(0);
     for f in &faces {
         assert!(split.particles.iter().any(|p| p.events_on(*f) > 0), "face {f}: no excursion deposit");
@@ -341,7 +346,7 @@ fn excursions_agree_with_plain_tracking_in_a_box_room(class_sampling: [f64; 4]) 
 fn a_furnished_room_study_reports_each_furnishing() {
     let mut study = depo_tracker::studies::RoomStudy::default();
     study.scene.geometry = Geometry::Room { size: [1.5, 1.0, 1.0] };
-    study.scene.duration = 120.0;
+    study.settings.duration = 120.0;
     study.scene.air_exchange = 2.0 / 3600.0;
     study.scene.furnishings = vec![Furnishing::new([0.2, 0.2, 0.4], [0.8, 0.8, 0.45]).named("table")];
     study.diameters = vec![5e-6];
@@ -377,8 +382,8 @@ fn a_furnished_room_study_reports_each_furnishing() {
 #[test]
 fn the_air_exchange_alone_empties_a_furnished_room_of_mirrors() {
     let a = 0.01;
-    let mut scene =
-        Scene::new(Geometry::Room { size: [1.0, 0.8, 0.6] }, 0.05, 150.0).with_walls(WallBehaviour::Reflect);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 0.8, 0.6] }).with_walls(WallBehaviour::Reflect);
+    let settings = RunSettings::new(0.05, 150.0);
     scene.gravity = [0.0; 3];
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
@@ -389,7 +394,7 @@ fn the_air_exchange_alone_empties_a_furnished_room_of_mirrors() {
     ];
     let n = 2000;
     let injection = mono(n, 0.01e-6);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     check_records(&scene, &injection, &result);
     let b = result.balance();
     assert_eq!(b.deposited.len(), 6 + 12);

@@ -3,7 +3,8 @@
 //! exact.
 
 use depo_tracker::{
-    run, Drag, Fate, Flow, Furnishing, Geometry, Injection, Opening, Record, Scene, SizeDistribution, WallBehaviour,
+    run, Drag, Fate, Flow, Furnishing, Geometry, Injection, Opening, Record, RunSettings, Scene, SizeDistribution,
+    WallBehaviour,
 };
 use depo_wall_model::WallLaw;
 
@@ -15,13 +16,17 @@ use common::{check_records, inside_a_box};
 /// without gravity, with a supply and an exhaust of `q` (m^3/s) at the two ends of the
 /// ceiling, 0.2 m square each.
 fn stirred_room(q: f64) -> Scene {
-    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.01, 600.0).with_walls(WallBehaviour::Reflect);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] }).with_walls(WallBehaviour::Reflect);
     scene.flow = Flow::TurbulentRoom { friction_velocity: 0.03, core_rms: 0.3, core_time: 1.0, blend_length: 0.1 };
     scene.gravity = [0.0; 3];
-    scene.average_from = 60.0;
     scene.openings =
         vec![Opening::supply(1, [0.2, 0.5], [0.2, 0.2], q), Opening::exhaust(1, [0.8, 0.5], [0.2, 0.2], q)];
     scene
+}
+
+/// The stirred room's run: 600 s of 10 ms steps, averaged from 60 s on.
+fn stirred_settings() -> RunSettings {
+    RunSettings { average_from: 60.0, ..RunSettings::new(0.01, 600.0) }
 }
 
 /// Tracers between mirrors in a well-mixed room leave through the exhaust alone, and the
@@ -40,7 +45,7 @@ fn the_airborne_number_decays_at_the_exchange_rate() {
     let rate = q / 1.0; // Q / V, 1/s
     assert_eq!(scene.exchange_rate(), rate);
     let injection = Injection::new(4000, SizeDistribution::Monodisperse { diameter: 0.1e-6 }, 1000.0);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &stirred_settings(), &injection).unwrap();
     let b = result.balance();
     assert_eq!(b.deposited.iter().sum::<usize>() + b.escaped, 0, "{b:?}");
     assert_eq!(b.airborne + b.exhausted, 4000);
@@ -58,8 +63,9 @@ fn the_airborne_number_decays_at_the_exchange_rate() {
 
 /// A small turbulent room with a table (a wall law on its faces) and a shelf (mirrors), an
 /// exhaust low on one wall and two supplies, Brownian motion and finite-Reynolds drag.
-fn furnished_room() -> (Scene, Injection) {
-    let mut scene = Scene::new(Geometry::Room { size: [0.5, 0.4, 0.3] }, 0.01, 20.0);
+/// 20 s of 10 ms steps.
+fn furnished_room() -> (Scene, RunSettings, Injection) {
+    let mut scene = Scene::new(Geometry::Room { size: [0.5, 0.4, 0.3] });
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
     scene.drag = Drag::SchillerNaumann;
@@ -78,7 +84,7 @@ fn furnished_room() -> (Scene, Injection) {
         Opening::supply(4, [0.25, 0.2], [0.1, 0.05], 0.0008),
     ];
     let injection = Injection::new(3000, SizeDistribution::LogNormal { median: 3e-6, geometric_sd: 2.5 }, 2000.0);
-    (scene, injection)
+    (scene, RunSettings::new(0.01, 20.0), injection)
 }
 
 /// Injected = airborne + deposited per surface (walls and faces) + exhausted + escaped,
@@ -91,8 +97,8 @@ fn furnished_room() -> (Scene, Injection) {
 /// air, exhausted ones at the exhaust. And no particle starts or ends inside a box.
 #[test]
 fn mass_balance_is_exact_with_openings_and_furnishings() {
-    let (scene, injection) = furnished_room();
-    let result = run(&scene, &injection).unwrap();
+    let (scene, settings, injection) = furnished_room();
+    let result = run(&scene, &settings, &injection).unwrap();
     check_records(&scene, &injection, &result);
     assert!(result.records.iter().all(|r| !inside_a_box(&scene, &Record { position: r.start, ..*r })));
     let b = result.balance();
@@ -118,11 +124,11 @@ fn mass_balance_is_exact_with_openings_and_furnishings() {
 /// The same seed gives the same run with openings on one thread and on two.
 #[test]
 fn runs_with_openings_do_not_depend_on_the_thread_count() {
-    let (scene, injection) = furnished_room();
+    let (scene, settings, injection) = furnished_room();
     let injection = Injection { count: 600, ..injection };
     let on = |threads| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| run(&scene, &injection).unwrap())
+        pool.install(|| run(&scene, &settings, &injection).unwrap())
     };
     let (one, two) = (on(1), on(2));
     assert_eq!(one.records, two.records);
@@ -133,6 +139,7 @@ fn runs_with_openings_do_not_depend_on_the_thread_count() {
 #[test]
 fn scenes_with_bad_openings_are_refused() {
     let injection = Injection::new(10, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
+    let run = |scene: &Scene, injection: &Injection| run(scene, &stirred_settings(), injection);
     let mut scene = stirred_room(0.0025);
     scene.air_exchange = 0.001;
     assert_eq!(run(&scene, &injection).unwrap_err().field, "air_exchange");
@@ -158,11 +165,10 @@ fn scenes_with_bad_openings_are_refused() {
 fn the_mean_flow_goes_round_a_plate_under_the_exhaust() {
     let q = 0.0025;
     let mut scene = stirred_room(q);
-    scene.duration = 120.0;
-    scene.average_from = 20.0;
+    let settings = RunSettings { duration: 120.0, average_from: 20.0, ..stirred_settings() };
     scene.furnishings = vec![Furnishing::new([0.65, 0.3, 0.8], [0.95, 0.7, 0.85]).named("plate")];
     let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: 0.1e-6 }, 1000.0);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     let faces = result.furnishing_faces(0);
     let bottom = result.deposition_velocity(&faces[..1]);
     let through = q / (0.3 * 0.4);
@@ -179,14 +185,14 @@ fn the_mean_flow_goes_round_a_plate_under_the_exhaust() {
 #[test]
 fn no_deposits_line_the_exhaust_s_edges() {
     let q = 0.004;
-    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.1, 600.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] });
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
-    scene.scheme = depo_tracker::Scheme::Midpoint;
+    let settings = RunSettings { scheme: depo_tracker::Scheme::Midpoint, ..RunSettings::new(0.1, 600.0) };
     scene.openings =
         vec![Opening::supply(2, [0.5, 0.7], [0.2, 0.2], q), Opening::exhaust(3, [0.5, 0.3], [0.2, 0.2], q)];
     let injection = Injection::new(4000, SizeDistribution::Monodisperse { diameter: 0.3e-6 }, 1000.0);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     let exhaust = scene.openings[1];
     let [[y0, y1], [z0, z1]] = exhaust.bounds();
     let on_wall: Vec<[f64; 3]> =

@@ -2,11 +2,13 @@
 //! (and exhausted) particles stay inside the domain and deposited ones sit on the wall that
 //! took them.
 
-use depo_tracker::{run, Drag, Fate, Flow, Geometry, Injection, Scene, Scheme, SizeDistribution, WallBehaviour};
+use depo_tracker::{
+    run, Drag, Fate, Flow, Geometry, Injection, RunSettings, Scene, Scheme, SizeDistribution, WallBehaviour,
+};
 use depo_wall_model::{SizeDependence, WallLaw};
 use proptest::prelude::*;
 
-fn scene_strategy() -> impl Strategy<Value = (Scene, Injection)> {
+fn scene_strategy() -> impl Strategy<Value = (Scene, RunSettings, Injection)> {
     (
         (0.05f64..3.0, 0.05f64..3.0, 0.02f64..3.0),
         any::<bool>(),
@@ -31,7 +33,8 @@ fn scene_strategy() -> impl Strategy<Value = (Scene, Injection)> {
                 } else {
                     Geometry::Room { size: [size.0, size.1, size.2] }
                 };
-                let mut scene = Scene::new(geometry, 10f64.powf(log_dt), 40.0 * 10f64.powf(log_dt));
+                let mut scene = Scene::new(geometry);
+                let mut settings = RunSettings::new(10f64.powf(log_dt), 40.0 * 10f64.powf(log_dt));
                 scene.flow = match (channel, flow) {
                     (_, 0) => Flow::Still,
                     (true, 1) => Flow::Poiseuille { max_speed: 2.0 },
@@ -41,7 +44,7 @@ fn scene_strategy() -> impl Strategy<Value = (Scene, Injection)> {
                 };
                 scene.brownian = brownian;
                 scene.drag = if finite_re { Drag::SchillerNaumann } else { Drag::Stokes };
-                scene.scheme = if euler { Scheme::Euler } else { Scheme::Exponential };
+                settings.scheme = if euler { Scheme::Euler } else { Scheme::Exponential };
                 scene.lift = channel && flow >= 1;
                 let law = WallLaw::preset("li1997-sio2").unwrap();
                 scene = scene.with_walls(match walls {
@@ -49,11 +52,11 @@ fn scene_strategy() -> impl Strategy<Value = (Scene, Injection)> {
                     1 => WallBehaviour::Reflect,
                     _ => WallBehaviour::Law { law, size: Some(SizeDependence::new(70e-6, 1.51).unwrap()) },
                 });
-                scene.seed = seed;
+                settings.seed = seed;
                 // Up to two air changes over the run.
-                scene.air_exchange = exchange / scene.duration;
+                scene.air_exchange = exchange / settings.duration;
                 let d = 10f64.powf(log_d);
-                (scene, Injection::new(24, SizeDistribution::Monodisperse { diameter: d }, density))
+                (scene, settings, Injection::new(24, SizeDistribution::Monodisperse { diameter: d }, density))
             },
         )
 }
@@ -62,8 +65,8 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
     #[test]
-    fn every_particle_is_accounted_for_and_stays_in_the_domain((scene, injection) in scene_strategy()) {
-        let result = match run(&scene, &injection) {
+    fn every_particle_is_accounted_for_and_stays_in_the_domain((scene, settings, injection) in scene_strategy()) {
+        let result = match run(&scene, &settings, &injection) {
             // A step too long for the turbulence's gradients is refused (tested elsewhere).
             Err(e) if e.field == "dt" => return Ok(()),
             other => other.unwrap(),
@@ -96,7 +99,7 @@ proptest! {
             }
         }
         // Only an unstable Euler step may lose particles to non-finite states.
-        if scene.scheme == Scheme::Exponential {
+        if settings.scheme == Scheme::Exponential {
             prop_assert_eq!(b.escaped, 0);
         }
     }
@@ -126,11 +129,11 @@ fn extreme_scenes_stay_finite() {
                 Geometry::Room { size: [0.5, 0.5, 0.5] }
             };
             let law = WallLaw::preset("dunn1995-copper").unwrap();
-            let mut scene = Scene::new(geometry, dt, 20.0 * dt).with_walls(WallBehaviour::Law { law, size: None });
+            let mut scene = Scene::new(geometry).with_walls(WallBehaviour::Law { law, size: None });
             scene.flow = flow;
             scene.brownian = true;
             let injection = Injection::new(40, SizeDistribution::Monodisperse { diameter: d }, density);
-            let result = match run(&scene, &injection) {
+            let result = match run(&scene, &RunSettings::new(dt, 20.0 * dt), &injection) {
                 // Steps too long for the turbulence's gradients are refused, and only those.
                 Err(e) if e.field == "dt" && flow != Flow::Still && dt >= 0.5 => continue,
                 other => other.unwrap(),

@@ -43,14 +43,13 @@ fn each_entry_point_s_steady_state_balances_its_own_release() {
         let p = one(&study);
         let steady = p.steady.expect("deposition removes them");
         // The same release, on its own: the study's own scene, tracked plainly from t = 0.
-        let mut scene = study.scene.clone();
-        scene.average_from = 0.0;
+        let settings = depo_tracker::RunSettings { average_from: 0.0, ..study.settings.clone() };
         let mut injection =
             Injection::new(p.particles, SizeDistribution::Monodisperse { diameter: 50e-6 }, study.density);
         if let Some((lo, hi)) = region {
             injection = injection.within(lo, hi);
         }
-        let release = run(&scene, &injection).unwrap();
+        let release = run(&study.scene, &settings, &injection).unwrap();
         let n = release.records.len() as f64;
         assert!(release.records.iter().all(|r| r.fate != Fate::Airborne && r.fate != Fate::Escaped));
         if let Some((lo, hi)) = region {
@@ -91,12 +90,12 @@ fn a_tracer_s_steady_indoor_outdoor_ratio_is_the_well_mixed_room_s() {
     let mut infiltration =
         RoomStudy { diameters: vec![0.01e-6], count: 1000, target_error: None, ..RoomStudy::default() };
     infiltration.scene.air_exchange = a;
-    infiltration.scene.duration = 7200.0;
+    infiltration.settings.duration = 7200.0;
     infiltration.penetration = 0.8;
     infiltration.source = Some(Source::Infiltration);
     let mut supply = RoomStudy { diameters: vec![0.01e-6], count: 1000, ..ventilated_by_openings(4.0) };
     supply.excursions = true;
-    supply.scene.duration = 7200.0;
+    supply.settings.duration = 7200.0;
     supply.source = Some(Source::Supply(0));
     for (name, study, lambda) in [("infiltration", &infiltration, 0.8 * a), ("supply", &supply, a)] {
         let p = one(study);

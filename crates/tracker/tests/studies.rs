@@ -1,10 +1,12 @@
+//! One subject, hence one file over 700 lines: the two studies and their excursions against plain tracking.
+//!
 //! The room and channel studies against their correlations, on small runs, and the near-wall
 //! excursions against plain tracking.
 
 use depo_tracker::studies::{ChannelStudy, RoomStudy, CHANNEL_COARSE_FACTOR, CHANNEL_INNERMOST_LEVEL, CHANNEL_SWEEPS};
 use depo_tracker::{
-    run, Correlation, Estimate, Excursions, Fate, Injection, NearWall, Orientation, Scene, SizeDistribution,
-    WallBehaviour, WallFunction,
+    run, Correlation, Estimate, Excursions, Fate, Injection, NearWall, Orientation, RunSettings, Scene,
+    SizeDistribution, WallBehaviour, WallFunction,
 };
 
 /// A `tau+` no particle can have at the channel's friction velocity is an error naming it, not
@@ -74,7 +76,7 @@ fn a_channel_study_runs_a_second_round_where_the_first_misses_its_target() {
             max_factor: 100.0,
             ..ChannelStudy::default()
         };
-        study.scene.seed = seed;
+        study.settings.seed = seed;
         for p in study.run(|_| {}).unwrap() {
             assert!(p.v_plus.error <= 0.05 * p.v_plus.value, "seed {seed}: {p:?}");
         }
@@ -348,37 +350,40 @@ fn z(a: Estimate, b: Estimate) -> f64 {
 /// errors apart at 0.01 um.
 #[test]
 fn excursions_agree_with_plain_tracking_where_both_resolve() {
-    let compare =
-        |scene: &Scene, injection: &Injection, excursions: Excursions, plain_count: usize, walls: &[usize]| {
-            let plain = run(scene, &Injection { count: plain_count, ..*injection }).unwrap();
-            let mut split = scene.clone();
-            split.seed += 1;
-            let excursions = excursions.calibrated(&split, injection, injection.count / 4, 1, 8).unwrap().0;
-            split.excursions = Some(excursions);
-            let split = run(&split, injection).unwrap();
-            let (a, b) = (plain.deposition_velocity(walls), split.deposition_velocity(walls));
-            println!(
-                "plain {:.4e} +- {:.1e} ({} events), excursions {:.4e} +- {:.1e}: {:.2} combined standard errors apart",
-                a.value,
-                a.error,
-                a.events,
-                b.value,
-                b.error,
-                z(a, b)
-            );
-            assert!(a.events > 150 && b.error < 0.1 * b.value, "plain {a:?}, excursions {b:?}");
-            assert!(split.truncated_share() < 0.01, "{}", split.truncated_share());
-            (a, b)
-        };
+    let compare = |(scene, settings): (&Scene, &RunSettings),
+                   injection: &Injection,
+                   excursions: Excursions,
+                   plain_count: usize,
+                   walls: &[usize]| {
+        let plain = run(scene, settings, &Injection { count: plain_count, ..*injection }).unwrap();
+        let mut split = settings.clone();
+        split.seed += 1;
+        let excursions = excursions.calibrated(scene, &split, injection, injection.count / 4, 1, 8).unwrap().0;
+        split.excursions = Some(excursions);
+        let split = run(scene, &split, injection).unwrap();
+        let (a, b) = (plain.deposition_velocity(walls), split.deposition_velocity(walls));
+        println!(
+            "plain {:.4e} +- {:.1e} ({} events), excursions {:.4e} +- {:.1e}: {:.2} combined standard errors apart",
+            a.value,
+            a.error,
+            a.events,
+            b.value,
+            b.error,
+            z(a, b)
+        );
+        assert!(a.events > 150 && b.error < 0.1 * b.value, "plain {a:?}, excursions {b:?}");
+        assert!(split.truncated_share() < 0.01, "{}", split.truncated_share());
+        (a, b)
+    };
     let room = RoomStudy::default();
-    let mut scene = room.scene.clone();
-    scene.average_from = 180.0;
+    let scene = room.scene.clone();
+    let settings = RunSettings { average_from: 180.0, ..room.settings.clone() };
     let nu = scene.air.kinematic_viscosity();
     let all: Vec<usize> = (0..6).collect();
     for (d, plain_count, walls) in [(0.01e-6, 12_000, &all[..]), (3e-6, 2000, &[0][..])] {
         let injection = Injection::new(500, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
         let excursions = Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0);
-        let (plain, split) = compare(&scene, &injection, excursions, plain_count, walls);
+        let (plain, split) = compare((&scene, &settings), &injection, excursions, plain_count, walls);
         assert!(z(plain, split) < 3.0, "{d} m: plain {plain:?}, excursions {split:?}");
     }
     // Ventilated, 6 air changes per hour: exhaust scales crossings and deposits alike, and the
@@ -388,18 +393,18 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
     ventilated.air_exchange = 6.0 / 3600.0;
     let injection = Injection::new(1000, SizeDistribution::Monodisperse { diameter: 3e-6 }, 1000.0);
     let excursions = Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0);
-    let (plain, split) = compare(&ventilated, &injection, excursions, 6000, &[0]);
+    let (plain, split) = compare((&ventilated, &settings), &injection, excursions, 6000, &[0]);
     assert!(z(plain, split) < 3.0, "ventilated, 3 um: plain {plain:?}, excursions {split:?}");
     let channel = ChannelStudy::default();
-    let mut scene = channel.scene.clone();
-    scene.average_from = 0.5 * scene.duration;
+    let scene = channel.scene.clone();
+    let settings = RunSettings { average_from: 0.5 * channel.settings.duration, ..channel.settings.clone() };
     let d = depo_tracker::correlations::diameter_for_tau_plus(10.0, 1000.0, &scene.air, 0.3).unwrap();
     // Inertial: resolved so that an error of 30 % in the excursions' deposited weight would
     // be more than 3.5 combined standard errors. With 400 particles (8 %) and with 1000 (5 %,
     // 2.5 combined standard errors) such an error passed; with 2000 (3.8 %) it fails at 4.
     let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
     let excursions = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e4);
-    let (plain, split) = compare(&scene, &injection, excursions, 6000, &[0, 1]);
+    let (plain, split) = compare((&scene, &settings), &injection, excursions, 6000, &[0, 1]);
     let combined = (plain.error / plain.value).hypot(split.error / split.value);
     assert!(combined < 0.3 / 3.5, "tau+ 10: a combined relative error of {combined}");
     assert!(z(plain, split) < 3.0, "tau+ 10: plain {plain:?}, excursions {split:?}");
@@ -411,21 +416,20 @@ fn excursions_agree_with_plain_tracking_where_both_resolve() {
 /// sweeps do start excursions of their own (more than the layer's crossings alone start).
 #[test]
 fn excursions_with_sweeps_agree_with_plain_tracking() {
-    let channel = ChannelStudy::default();
-    let mut scene = channel.scene.clone();
-    scene.average_from = 0.5 * scene.duration;
+    let ChannelStudy { scene, settings, .. } = ChannelStudy::default();
+    let settings = RunSettings { average_from: 0.5 * settings.duration, ..settings };
     let nu = scene.air.kinematic_viscosity();
     let d = depo_tracker::correlations::diameter_for_tau_plus(10.0, 1000.0, &scene.air, 0.3).unwrap();
     let injection = Injection::new(400, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
-    let plain = run(&scene, &Injection { count: 3000, ..injection }).unwrap();
-    let mut split = scene.clone();
+    let plain = run(&scene, &settings, &Injection { count: 3000, ..injection }).unwrap();
+    let mut split = settings.clone();
     split.seed += 1;
     let layer_only = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 1.0, 1e4);
     let with_sweeps = Excursions { sweeps: Some(CHANNEL_SWEEPS), ..layer_only.clone() };
     let started = |excursions: Excursions| {
-        let mut scene = split.clone();
-        scene.excursions = Some(excursions.calibrated(&scene, &injection, 100, 1, 4).unwrap().0);
-        let result = run(&scene, &injection).unwrap();
+        let mut settings = split.clone();
+        settings.excursions = Some(excursions.calibrated(&scene, &settings, &injection, 100, 1, 4).unwrap().0);
+        let result = run(&scene, &settings, &injection).unwrap();
         let started: u32 = result.particles.iter().map(|p| p.excursions).sum();
         (result, started)
     };
@@ -443,18 +447,16 @@ fn excursions_with_sweeps_agree_with_plain_tracking() {
 /// scheme instead put `V+` 40 % high, four combined standard errors here.)
 #[test]
 fn coarse_excursion_steps_agree_with_the_scenes_step() {
-    let channel = ChannelStudy::default();
-    let mut scene = channel.scene.clone();
-    scene.average_from = 0.5 * scene.duration;
+    let ChannelStudy { scene, settings, .. } = ChannelStudy::default();
+    let settings = RunSettings { average_from: 0.5 * settings.duration, ..settings };
     let nu = scene.air.kinematic_viscosity();
     let d = depo_tracker::correlations::diameter_for_tau_plus(0.3, 1000.0, &scene.air, 0.3).unwrap();
     let injection = Injection::new(1000, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
     let fine = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e5);
     let estimate = |excursions: Excursions, seed: u64| {
-        let mut scene = scene.clone();
-        scene.seed = seed;
-        scene.excursions = Some(excursions.calibrated(&scene, &injection, 250, 1, 4).unwrap().0);
-        run(&scene, &injection).unwrap().deposition_velocity(&[0, 1])
+        let mut settings = RunSettings { seed, ..settings.clone() };
+        settings.excursions = Some(excursions.calibrated(&scene, &settings, &injection, 250, 1, 4).unwrap().0);
+        run(&scene, &settings, &injection).unwrap().deposition_velocity(&[0, 1])
     };
     let coarse = Excursions { coarse_factor: CHANNEL_COARSE_FACTOR, ..fine.clone() };
     let (a, b) = (estimate(fine, 11), estimate(coarse, 12));
@@ -468,23 +470,22 @@ fn coarse_excursion_steps_agree_with_the_scenes_step() {
 /// channel study takes them at this `tau+`).
 #[test]
 fn excursions_agree_with_plain_tracking_under_the_intermittent_model() {
-    let channel = ChannelStudy::default();
-    let mut scene = channel.scene.clone();
+    let ChannelStudy { mut scene, settings, .. } = ChannelStudy::default();
     scene.near_wall = NearWall::Intermittent;
-    scene.average_from = 0.5 * scene.duration;
+    let settings = RunSettings { average_from: 0.5 * settings.duration, ..settings };
     let nu = scene.air.kinematic_viscosity();
     let d = depo_tracker::correlations::diameter_for_tau_plus(3.0, 1000.0, &scene.air, 0.3).unwrap();
     let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
-    let plain = run(&scene, &Injection { count: 9000, ..injection }).unwrap();
+    let plain = run(&scene, &settings, &Injection { count: 9000, ..injection }).unwrap();
     let a = plain.deposition_velocity(&[0, 1]);
     assert!(a.events > 100, "plain {a:?}");
     let layer = Excursions::in_wall_units(0.3, nu, CHANNEL_INNERMOST_LEVEL, 3.0, 1e5);
     let sweeps = Excursions { sampling: 1.0, sweeps: Some(CHANNEL_SWEEPS), ..layer.clone() };
     for (excursions, what) in [(layer, "layer"), (sweeps, "sweeps")] {
-        let mut split = scene.clone();
+        let mut split = settings.clone();
         split.seed += 1;
-        split.excursions = Some(excursions.calibrated(&split, &injection, 500, 1, 4).unwrap().0);
-        let b = run(&split, &injection).unwrap().deposition_velocity(&[0, 1]);
+        split.excursions = Some(excursions.calibrated(&scene, &split, &injection, 500, 1, 4).unwrap().0);
+        let b = run(&scene, &split, &injection).unwrap().deposition_velocity(&[0, 1]);
         assert!(b.error < 0.2 * b.value, "{what}: plain {a:?}, excursions {b:?}");
         assert!(z(a, b) < 3.0, "tau+ 3, intermittent, {what}: plain {a:?}, excursions {b:?}");
     }
@@ -494,16 +495,15 @@ fn excursions_agree_with_plain_tracking_under_the_intermittent_model() {
 /// on two.
 #[test]
 fn excursions_do_not_depend_on_the_thread_count() {
-    let room = RoomStudy::default();
-    let mut scene = room.scene.clone();
-    scene.duration = 300.0;
-    scene.average_from = 60.0;
+    let RoomStudy { scene, mut settings, .. } = RoomStudy::default();
+    settings.duration = 300.0;
+    settings.average_from = 60.0;
     let nu = scene.air.kinematic_viscosity();
-    scene.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
+    settings.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 2.0, 4000.0));
     let injection = Injection::new(300, SizeDistribution::Monodisperse { diameter: 0.1e-6 }, 1000.0);
     let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-    let one = pool(1).install(|| run(&scene, &injection).unwrap());
-    let two = pool(2).install(|| run(&scene, &injection).unwrap());
+    let one = pool(1).install(|| run(&scene, &settings, &injection).unwrap());
+    let two = pool(2).install(|| run(&scene, &settings, &injection).unwrap());
     assert_eq!(one, two);
     assert!(one.particles.iter().any(|p| p.excursions > 0 && p.deposited.iter().sum::<f64>() > 0.0));
 }
@@ -515,7 +515,7 @@ fn excursions_do_not_depend_on_the_thread_count() {
 fn ventilated_room_reports_the_indoor_outdoor_ratio() {
     let mut study =
         RoomStudy { diameters: vec![3e-6], count: 200, penetration: 0.8, target_error: None, ..RoomStudy::default() };
-    study.scene.duration = 600.0;
+    study.settings.duration = 600.0;
     study.scene.air_exchange = 2.0 / 3600.0;
     let point = &study.run(|_| {}).unwrap()[0];
     let (a, beta) = (study.scene.air_exchange, point.beta);
@@ -541,7 +541,7 @@ fn a_room_study_runs_more_particles_to_reach_its_target_error() {
         max_count: 3000,
         ..RoomStudy::default()
     };
-    study.scene.duration = 600.0;
+    study.settings.duration = 600.0;
     let point = &study.run(|_| {}).unwrap()[0];
     assert!(point.particles > 100 && point.particles < 3000, "{}", point.particles);
     // The errors fall as 1 / sqrt(n); the margin covers their own spread.
@@ -582,7 +582,7 @@ fn a_recirculation_filter_adds_its_removal_to_the_exhaust() {
     study.scene = study.scene.with_walls(WallBehaviour::Reflect);
     study.scene.gravity = [0.0; 3];
     study.scene.brownian = false;
-    study.scene.duration = 1800.0;
+    study.settings.duration = 1800.0;
     study.scene.air_exchange = 0.5 * h;
     study.filtration = Filtration {
         supply_share: 0.5,
@@ -616,7 +616,7 @@ fn the_channel_wall_function_deposits_wood_s_flux_on_the_layer_s_concentration()
     let mut study =
         ChannelStudy { tau_plus: vec![0.1, 3.0, 30.0], count: 400, target_error: None, ..ChannelStudy::default() };
     study.scene.wall_function = Some(WallFunction::new(Correlation::Wood));
-    let dt_plus = study.scene.dt * 0.3 * 0.3 / NU_BY_HAND;
+    let dt_plus = study.settings.dt * 0.3 * 0.3 / NU_BY_HAND;
     for p in study.run(|_| {}).unwrap() {
         let c = p.layer_concentration.expect("a wall function's layer concentration");
         let x = p.wood * dt_plus / WallFunction::LAYER_PLUS;
@@ -648,14 +648,13 @@ fn the_channel_wall_function_deposits_wood_s_flux_on_the_layer_s_concentration()
 /// one counted, or a deposit recorded on the wrong wall, fails it.
 #[test]
 fn the_wall_function_s_particles_deposit_as_its_expected_deposits_say() {
-    let study = ChannelStudy::default();
-    let mut scene = study.scene.clone();
+    let ChannelStudy { mut scene, mut settings, .. } = ChannelStudy::default();
     scene.wall_function = Some(WallFunction::new(Correlation::Wood));
-    scene.duration *= 0.5;
-    scene.average_from = 0.2 * scene.duration;
+    settings.duration *= 0.5;
+    settings.average_from = 0.2 * settings.duration;
     let d = depo_tracker::correlations::diameter_for_tau_plus(10.0, 1000.0, &scene.air, 0.3).unwrap();
     let injection = Injection::new(1500, SizeDistribution::Monodisperse { diameter: d }, 1000.0);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     let expected = result.deposition_velocity(&[0, 1]);
     // The sampled deposits' ratio estimate, with the delta method's error, by hand.
     let window = result.window;
@@ -694,17 +693,17 @@ fn the_wall_function_s_particles_deposit_as_its_expected_deposits_say() {
 #[test]
 fn a_wall_law_decides_what_the_wall_function_brings() {
     use depo_wall_model::{LawParams, WallLaw};
-    let mut scene = ChannelStudy::default().scene;
+    let ChannelStudy { mut scene, mut settings, .. } = ChannelStudy::default();
     scene.wall_function = Some(WallFunction::new(Correlation::Wood));
-    scene.duration *= 0.2;
+    settings.duration *= 0.2;
     let injection = Injection::new(200, SizeDistribution::Monodisperse { diameter: 20e-6 }, 1000.0);
     let with = |vc: f64| {
         let mut scene = scene.clone();
         let params = LawParams { vc, ..*WallLaw::preset("li1997-sio2").unwrap().params() };
         scene = scene.with_walls(WallBehaviour::Law { law: WallLaw::new(params).unwrap(), size: None });
-        run(&scene, &injection).unwrap()
+        run(&scene, &settings, &injection).unwrap()
     };
-    let sink = run(&scene, &injection).unwrap();
+    let sink = run(&scene, &settings, &injection).unwrap();
     let sticky = with(1e3);
     assert_eq!(sink.records, sticky.records);
     assert_eq!(sink.deposition_velocity(&[0, 1]), sticky.deposition_velocity(&[0, 1]));
@@ -724,12 +723,12 @@ fn a_wall_law_decides_what_the_wall_function_brings() {
 /// checked against hand-computed ones in their unit tests.
 #[test]
 fn the_room_wall_function_gives_lai_nazaroff_by_orientation() {
-    let mut scene = RoomStudy::default().scene;
+    let RoomStudy { mut scene, mut settings, .. } = RoomStudy::default();
     scene.wall_function = Some(WallFunction::new(Correlation::LaiNazaroff));
-    scene.duration = 900.0;
-    scene.average_from = 60.0;
+    settings.duration = 900.0;
+    settings.average_from = 60.0;
     let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     let ln = depo_tracker::correlations::LaiNazaroff::new(1e-6, 1000.0, &scene.air, 9.80665, 0.01);
     for (orientation, model) in
         [(Orientation::Floor, ln.floor), (Orientation::Wall, ln.wall), (Orientation::Ceiling, ln.ceiling)]
@@ -749,13 +748,13 @@ fn the_room_wall_function_gives_lai_nazaroff_by_orientation() {
 /// standard errors and 15 % as above.
 #[test]
 fn the_room_s_vertical_walls_take_their_own_correlation() {
-    let mut scene = RoomStudy::default().scene;
+    let RoomStudy { mut scene, mut settings, .. } = RoomStudy::default();
     scene.wall_function =
         Some(WallFunction { vertical: Some(Correlation::Wood), ..WallFunction::new(Correlation::LaiNazaroff) });
-    scene.duration = 900.0;
-    scene.average_from = 60.0;
+    settings.duration = 900.0;
+    settings.average_from = 60.0;
     let injection = Injection::new(2000, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     let ln = depo_tracker::correlations::LaiNazaroff::new(1e-6, 1000.0, &scene.air, 9.80665, 0.01);
     let nu = scene.air.kinematic_viscosity();
     let sc = depo_tracker::correlations::schmidt(1e-6, &scene.air);
@@ -785,18 +784,18 @@ fn the_room_s_vertical_walls_take_their_own_correlation() {
 #[test]
 fn a_furnished_ventilated_room_runs_with_the_wall_function_as_the_resolved_model_in_the_diffusion_regime() {
     use depo_tracker::{Furnishing, Opening};
-    let mut scene = RoomStudy::default().scene;
-    scene.duration = 1200.0;
-    scene.average_from = 120.0;
+    let RoomStudy { mut scene, mut settings, .. } = RoomStudy::default();
+    settings.duration = 1200.0;
+    settings.average_from = 120.0;
     scene.furnishings = vec![Furnishing::new([1.0, 1.0, 0.7], [2.0, 1.6, 0.75]).named("table")];
     let q = 1.0 * 30.0 / 3600.0; // one air change an hour
     scene.openings =
         vec![Opening::supply(2, [1.5, 2.0], [0.3, 0.3], q), Opening::exhaust(3, [1.5, 0.5], [0.3, 0.3], q)];
     let injection = Injection::new(4000, SizeDistribution::Monodisperse { diameter: 0.01e-6 }, 1000.0);
     let walls: Vec<usize> = (0..6).collect();
-    let resolved = run(&scene, &injection).unwrap().deposition_velocity(&walls);
+    let resolved = run(&scene, &settings, &injection).unwrap().deposition_velocity(&walls);
     scene.wall_function = Some(WallFunction::new(Correlation::LaiNazaroff));
-    let with = run(&scene, &injection).unwrap();
+    let with = run(&scene, &settings, &injection).unwrap();
     let wall_function = with.deposition_velocity(&walls);
     let band = 3.0 * resolved.error.hypot(wall_function.error) + 0.1 * resolved.value;
     println!(
@@ -865,12 +864,12 @@ fn the_steady_state_under_a_continuous_source_matches_independent_calculations()
     // Without gravity: a settling particle comes to rest on a mirror floor.
     study.scene.gravity = [0.0; 3];
     study.scene.air_exchange = a;
-    study.scene.duration = 7200.0;
+    study.settings.duration = 7200.0;
     study.excursions = false;
     study.penetration = 0.8;
     let p = &study.run(|_| {}).unwrap()[0];
     let steady = p.steady.expect("ventilated");
-    let dt = study.scene.dt;
+    let dt = study.settings.dt;
     let residence = dt / -(-a * dt).exp_m1();
     let io = p.steady_indoor_outdoor.unwrap();
     println!(
@@ -931,8 +930,8 @@ fn the_wall_function_beside_sippola_and_nazaroff_s_duct_measurements() {
         let unit = NU_BY_HAND / u;
         study.scene.geometry = Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 300.0 * unit };
         study.scene.flow = Flow::TurbulentChannel { friction_velocity: u };
-        study.scene.dt = 0.2 * unit / u;
-        study.scene.duration = 2000.0 * unit / u;
+        study.settings.dt = 0.2 * unit / u;
+        study.settings.duration = 2000.0 * unit / u;
         study.scene.wall_function = Some(WallFunction::new(Correlation::Wood));
         let tau_plus = t.tau_plus(&study.scene.air);
         study.tau_plus = vec![tau_plus];

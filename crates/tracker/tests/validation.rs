@@ -4,7 +4,7 @@
 use depo_tracker::air::Air;
 use depo_tracker::correlations::settling_diffusion_flux;
 use depo_tracker::{
-    run, Drag, Fate, Flow, Geometry, Injection, NearWall, Scene, Scheme, SizeDistribution, WallBehaviour,
+    run, Drag, Fate, Flow, Geometry, Injection, NearWall, RunSettings, Scene, Scheme, SizeDistribution, WallBehaviour,
 };
 use depo_wall_model::{SizeDependence, WallLaw};
 
@@ -96,11 +96,11 @@ fn settling_onto_the_floor_deposits_at_the_terminal_velocity() {
         // A box tall enough that half the particles reach the floor in 400 steps.
         let duration = 100.0;
         let height = 2.0 * vs * duration + d;
-        let mut scene =
-            Scene::new(Geometry::Room { size: [10.0 * height, 10.0 * height, height] }, duration / 400.0, duration);
+        let mut scene = Scene::new(Geometry::Room { size: [10.0 * height, 10.0 * height, height] });
+        let settings = RunSettings::new(duration / 400.0, duration);
         scene.drag = drag;
         let n = 20_000;
-        let result = run(&scene, &mono(n, d)).unwrap();
+        let result = run(&scene, &settings, &mono(n, d)).unwrap();
         let deposited = result.balance().deposited[0];
         assert_eq!(result.balance().deposited.iter().sum::<usize>(), deposited, "only the floor collects");
         // Injected uniformly over the height left free by the radius: C0 = n / (A (H - d)).
@@ -118,11 +118,12 @@ fn settling_onto_the_floor_deposits_at_the_terminal_velocity() {
 fn brownian_mean_square_displacement_is_2dt() {
     let d = 0.1e-6;
     let aero = hinds_by_hand(d, 1000.0);
-    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.1, 10.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] });
+    let settings = RunSettings::new(0.1, 10.0);
     scene.gravity = [0.0; 3];
     scene.brownian = true;
     let injection = mono(40_000, d).within([0.49; 3], [0.51; 3]);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     assert_eq!(result.balance().airborne, 40_000);
     let tau = aero.relaxation_time;
     let expected = 2.0 * aero.diffusivity * (10.0 - tau * (1.0 - (-10.0 / tau).exp()));
@@ -140,11 +141,12 @@ fn diffusion_onto_a_floor_follows_the_exact_solution() {
     let d = 0.05e-6;
     let aero = hinds_by_hand(d, 1000.0);
     let (duration, height) = (100.0, 0.01);
-    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, height] }, 0.02, duration);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, height] });
+    let settings = RunSettings::new(0.02, duration);
     scene.brownian = true;
     // Only the floor matters: the ceiling is as far as the diffusion length allows.
     let n = 40_000;
-    let result = run(&scene, &mono(n, d).within([0.0; 3], [1.0, 1.0, height / 2.0])).unwrap();
+    let result = run(&scene, &settings, &mono(n, d).within([0.0; 3], [1.0, 1.0, height / 2.0])).unwrap();
     let deposited = result.balance().deposited[0] as f64;
     // Cumulative flux: integrate J/C0 over time (midpoint rule on a fine grid; J ~ t^-1/2 at 0).
     let steps = 200_000;
@@ -165,14 +167,15 @@ fn channel_tracer_share(near_wall: NearWall, drift_correction: bool, scheme: Sch
     let unit = air.kinematic_viscosity() / u_star;
     let height = 300.0 * unit;
     let dt = 0.2 * unit / u_star;
-    let mut scene = Scene::new(Geometry::Channel { length: 0.1, width: 0.05, height }, dt, 1000.0 * dt * 5.0)
-        .with_walls(WallBehaviour::Reflect);
+    let mut scene =
+        Scene::new(Geometry::Channel { length: 0.1, width: 0.05, height }).with_walls(WallBehaviour::Reflect);
+    let mut settings = RunSettings::new(dt, 1000.0 * dt * 5.0);
     scene.gravity = [0.0; 3];
     scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
     scene.near_wall = near_wall;
     scene.drift_correction = drift_correction;
-    scene.scheme = scheme;
-    let tracers = run(&scene, &mono(10_000, 1e-9)).unwrap();
+    settings.scheme = scheme;
+    let tracers = run(&scene, &settings, &mono(10_000, 1e-9)).unwrap();
     assert_eq!(tracers.balance().airborne, 10_000);
     let near = tracers.records.iter().filter(|r| r.position[2] < 10.0 * unit || r.position[2] > height - 10.0 * unit);
     near.count() as f64 / tracers.records.len() as f64 / (20.0 / 300.0)
@@ -198,10 +201,11 @@ fn tracers_stay_well_mixed_with_the_intermittent_model() {
     let share = channel_tracer_share(NearWall::Intermittent, false, Scheme::Exponential);
     assert!(share > 1.5, "without drift the wall layer should collect tracers: {share} of uniform");
     // Only a channel has the model's profiles.
-    let mut room = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.01, 1.0);
+    let mut room = Scene::new(Geometry::Room { size: [1.0; 3] });
+    let room_settings = RunSettings::new(0.01, 1.0);
     room.flow = Flow::indoor_room();
     room.near_wall = NearWall::Intermittent;
-    let err = run(&room, &mono(10, 1e-6)).unwrap_err();
+    let err = run(&room, &room_settings, &mono(10, 1e-6)).unwrap_err();
     assert!(err.to_string().contains("near_wall"), "{err}");
 }
 
@@ -216,8 +220,9 @@ fn the_midpoint_step_keeps_channel_tracers_well_mixed_under_either_near_wall_mod
     }
 }
 
-fn busy_room() -> (Scene, Injection) {
-    let mut scene = Scene::new(Geometry::Room { size: [0.5, 0.4, 0.3] }, 0.01, 20.0);
+fn busy_room() -> (Scene, RunSettings, Injection) {
+    let mut scene = Scene::new(Geometry::Room { size: [0.5, 0.4, 0.3] });
+    let settings = RunSettings::new(0.01, 20.0);
     scene.flow = Flow::indoor_room();
     scene.brownian = true;
     scene.drag = Drag::SchillerNaumann;
@@ -225,14 +230,14 @@ fn busy_room() -> (Scene, Injection) {
     scene.walls[0] = WallBehaviour::Law { law, size: Some(SizeDependence::new(8.6e-6, 1.51).unwrap()) };
     scene.walls[3] = WallBehaviour::Reflect;
     let injection = Injection::new(3000, SizeDistribution::LogNormal { median: 2e-6, geometric_sd: 2.5 }, 2000.0);
-    (scene, injection)
+    (scene, settings, injection)
 }
 
 /// Airborne + deposited + escaped = injected, exactly, in every run; masses to rounding.
 #[test]
 fn mass_is_conserved() {
-    let (scene, injection) = busy_room();
-    let result = run(&scene, &injection).unwrap();
+    let (scene, settings, injection) = busy_room();
+    let result = run(&scene, &settings, &injection).unwrap();
     let b = result.balance();
     assert_eq!(b.airborne + b.deposited.iter().sum::<usize>() + b.escaped, b.injected);
     assert_eq!(b.injected, 3000);
@@ -253,9 +258,9 @@ fn mass_is_conserved() {
 /// end where they did without it).
 #[test]
 fn mass_is_conserved_with_ventilation() {
-    let (mut scene, injection) = busy_room();
+    let (mut scene, settings, injection) = busy_room();
     scene.air_exchange = 0.02;
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     let b = result.balance();
     assert_eq!(b.airborne + b.deposited.iter().sum::<usize>() + b.escaped + b.exhausted, b.injected);
     let mass = b.airborne_mass + b.deposited_mass.iter().sum::<f64>() + b.escaped_mass + b.exhausted_mass;
@@ -263,7 +268,7 @@ fn mass_is_conserved_with_ventilation() {
     // About 1 - exp(-0.02 * 20) = 33 % exhausted, less what deposits first.
     assert!(b.exhausted > 600 && b.deposited.iter().sum::<usize>() > 0 && b.airborne > 0, "{b:?}");
     scene.air_exchange = 0.0;
-    let closed = run(&scene, &injection).unwrap();
+    let closed = run(&scene, &settings, &injection).unwrap();
     for (open, closed) in result.records.iter().zip(&closed.records) {
         if open.fate != Fate::Exhausted {
             assert_eq!(open, closed);
@@ -278,11 +283,12 @@ fn mass_is_conserved_with_ventilation() {
 #[test]
 fn ventilation_alone_decays_at_the_exchange_rate() {
     let a = 0.01;
-    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 2.0, 250.0).with_walls(WallBehaviour::Reflect);
+    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }).with_walls(WallBehaviour::Reflect);
+    let settings = RunSettings::new(2.0, 250.0);
     scene.gravity = [0.0; 3];
     scene.air_exchange = a;
     let n = 20_000;
-    let result = run(&scene, &mono(n, 1e-6)).unwrap();
+    let result = run(&scene, &settings, &mono(n, 1e-6)).unwrap();
     for t in [10.0, 50.0, 100.0, 180.0, 250.0] {
         // Exhausted at `t` or before, or still in the air.
         let still = result.records.iter().filter(|r| r.fate == Fate::Airborne || r.time > t + 1e-9).count();
@@ -302,65 +308,70 @@ fn ventilation_alone_decays_at_the_exchange_rate() {
 /// and without excursions; and the same wall tallies.
 #[test]
 fn a_run_carried_on_is_the_run_of_all_its_particles() {
-    let (scene, injection) = busy_room();
-    let whole = run(&scene, &injection).unwrap();
-    let first = run(&scene, &Injection { count: 1100, ..injection }).unwrap();
-    let more = depo_tracker::run_more(&scene, &injection, first).unwrap();
+    let (scene, settings, injection) = busy_room();
+    let whole = run(&scene, &settings, &injection).unwrap();
+    let first = run(&scene, &settings, &Injection { count: 1100, ..injection }).unwrap();
+    let more = depo_tracker::run_more(&scene, &settings, &injection, first).unwrap();
     assert_eq!(more.records, whole.records);
     assert_eq!(more.particles, whole.particles);
     for (a, b) in more.tallies.iter().zip(&whole.tallies) {
         assert_eq!((a.contacts, a.captures, a.rebounds, a.resting), (b.contacts, b.captures, b.rebounds, b.resting));
     }
-    let mut split = scene.clone();
+    let mut split = settings.clone();
     split.average_from = 5.0;
     split.excursions = Some(depo_tracker::Excursions::in_wall_units(0.01, 1.5e-5, 0.05, 2.0, 2000.0));
     let small = Injection { count: 300, ..injection };
-    let whole = run(&split, &small).unwrap();
-    let first = run(&split, &Injection { count: 100, ..small }).unwrap();
-    let more = depo_tracker::run_more(&split, &small, first).unwrap();
+    let whole = run(&scene, &split, &small).unwrap();
+    let first = run(&scene, &split, &Injection { count: 100, ..small }).unwrap();
+    let more = depo_tracker::run_more(&scene, &split, &small, first).unwrap();
     assert_eq!(more.particles, whole.particles);
     assert!(more.particles.iter().any(|p| p.excursions > 0));
-    assert_eq!(depo_tracker::run_more(&split, &Injection { count: 50, ..small }, more).unwrap_err().field, "count");
+    assert_eq!(
+        depo_tracker::run_more(&scene, &split, &Injection { count: 50, ..small }, more).unwrap_err().field,
+        "count"
+    );
 }
 
 /// The same seed gives the same run, bit for bit, on one thread and on two.
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
-    let (scene, injection) = busy_room();
+    let (scene, settings, injection) = busy_room();
     let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-    let one = pool(1).install(|| run(&scene, &injection).unwrap());
-    let two = pool(2).install(|| run(&scene, &injection).unwrap());
+    let one = pool(1).install(|| run(&scene, &settings, &injection).unwrap());
+    let two = pool(2).install(|| run(&scene, &settings, &injection).unwrap());
     assert_eq!(one, two);
-    let mut other = scene.clone();
+    let mut other = settings.clone();
     other.seed += 1;
-    assert_ne!(run(&other, &injection).unwrap().records, one.records, "another seed, another run");
+    assert_ne!(run(&scene, &other, &injection).unwrap().records, one.records, "another seed, another run");
     assert!(one.records.iter().any(|r| matches!(r.fate, Fate::Deposited(_))));
 }
 
 /// Bad scenes are errors naming the field.
 #[test]
 fn scene_errors_name_the_field() {
-    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.01, 1.0);
+    let mut scene = Scene::new(Geometry::Room { size: [1.0; 3] });
+    let mut settings = RunSettings::new(0.01, 1.0);
     let particles = mono(10, 1e-6);
     scene.lift = true;
-    assert_eq!(run(&scene, &particles).unwrap_err().field, "lift");
+    assert_eq!(run(&scene, &settings, &particles).unwrap_err().field, "lift");
     scene.lift = false;
-    scene.dt = 0.0;
-    assert_eq!(run(&scene, &particles).unwrap_err().field, "dt");
-    scene.dt = 0.01;
+    settings.dt = 0.0;
+    assert_eq!(run(&scene, &settings, &particles).unwrap_err().field, "dt");
+    settings.dt = 0.01;
     scene.flow = Flow::TurbulentChannel { friction_velocity: 0.3 };
-    assert_eq!(run(&scene, &particles).unwrap_err().field, "flow");
+    assert_eq!(run(&scene, &settings, &particles).unwrap_err().field, "flow");
     scene.flow = Flow::Still;
-    assert_eq!(run(&scene, &mono(10, 0.6)).unwrap_err().field, "particles.diameter");
+    assert_eq!(run(&scene, &settings, &mono(10, 0.6)).unwrap_err().field, "particles.diameter");
     // A diameter in the wrong unit (1 for 1 um) in a room big enough for it: an error, not a
     // run of a 1 m ball.
-    let big = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.01, 1.0);
-    let err = run(&big, &mono(10, 1.0)).unwrap_err();
+    let big = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] });
+    let big_settings = RunSettings::new(0.01, 1.0);
+    let err = run(&big, &big_settings, &mono(10, 1.0)).unwrap_err();
     assert_eq!(err.field, "particles.diameter");
     assert!(err.to_string().contains("at most 1 mm"), "{err}");
-    assert!(run(&big, &mono(10, 1e-3)).is_ok());
-    assert_eq!(run(&scene, &mono(0, 1e-6)).unwrap_err().field, "particles.count");
-    let err = run(&scene, &mono(10, 1e-6).with_velocity([f64::NAN, 0.0, 0.0])).unwrap_err();
+    assert!(run(&big, &big_settings, &mono(10, 1e-3)).is_ok());
+    assert_eq!(run(&scene, &settings, &mono(0, 1e-6)).unwrap_err().field, "particles.count");
+    let err = run(&scene, &settings, &mono(10, 1e-6).with_velocity([f64::NAN, 0.0, 0.0])).unwrap_err();
     assert_eq!(err.field, "particles.velocity");
     assert!(err.to_string().contains("must be finite"));
 }
@@ -368,9 +379,10 @@ fn scene_errors_name_the_field() {
 /// Lognormal injection: the sizes have the asked count median and geometric standard deviation.
 #[test]
 fn lognormal_sizes_have_their_median_and_spread() {
-    let scene = Scene::new(Geometry::Room { size: [1.0; 3] }, 0.01, 0.0);
+    let scene = Scene::new(Geometry::Room { size: [1.0; 3] });
+    let settings = RunSettings::new(0.01, 0.0);
     let injection = Injection::new(20_000, SizeDistribution::LogNormal { median: 1e-6, geometric_sd: 2.0 }, 1000.0);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     let mut logs: Vec<f64> = result.records.iter().map(|r| r.diameter.ln()).collect();
     logs.sort_by(f64::total_cmp);
     let median = logs[logs.len() / 2].exp();
@@ -387,12 +399,13 @@ fn lognormal_sizes_have_their_median_and_spread() {
 fn several_contacts_per_step_follow_the_folded_path() {
     let (gap, d) = (2e-3, 100e-6);
     let r = d / 2.0;
-    let mut scene = Scene::new(Geometry::Room { size: [gap, 1.0, 1.0] }, 0.01, 0.1).with_walls(WallBehaviour::Reflect);
+    let mut scene = Scene::new(Geometry::Room { size: [gap, 1.0, 1.0] }).with_walls(WallBehaviour::Reflect);
+    let settings = RunSettings::new(0.01, 0.1);
     scene.gravity = [0.0; 3];
     // Dense enough that drag barely slows it: tau ~ 3e4 s.
     let injection =
         Injection::new(50, SizeDistribution::Monodisperse { diameter: d }, 1e9).with_velocity([1.0, 0.0, 0.0]);
-    let result = run(&scene, &injection).unwrap();
+    let result = run(&scene, &settings, &injection).unwrap();
     let tau = hinds_by_hand(d, 1e9).relaxation_time;
     let travelled = tau * (1.0 - (-0.1 / tau).exp());
     let width = gap - 2.0 * r;
@@ -416,12 +429,12 @@ fn several_contacts_per_step_follow_the_folded_path() {
 /// blended over 0.25 m, `dt` = 0.05 s, which left 1.6 times uniform there) is refused.
 #[test]
 fn tracers_stay_well_mixed_in_a_room_and_long_steps_are_refused() {
-    let mut scene =
-        Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.01, 300.0).with_walls(WallBehaviour::Reflect);
+    let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }).with_walls(WallBehaviour::Reflect);
+    let mut settings = RunSettings::new(0.01, 300.0);
     scene.gravity = [0.0; 3];
     scene.flow = Flow::indoor_room();
     let n = 20_000;
-    let result = run(&scene, &mono(n, 1e-9)).unwrap();
+    let result = run(&scene, &settings, &mono(n, 1e-9)).unwrap();
     let band = 0.02;
     // Along each axis: the walls across it (and, through the tangential damping, the others).
     for (axis, length) in [4.0, 3.0, 2.5].into_iter().enumerate() {
@@ -431,8 +444,8 @@ fn tracers_stay_well_mixed_in_a_room_and_long_steps_are_refused() {
         assert!((near / expected - 1.0).abs() < 0.1, "axis {axis}: {near} within {band} m against {expected}");
     }
     scene.flow = Flow::TurbulentRoom { friction_velocity: 0.01, core_rms: 0.5, core_time: 2.0, blend_length: 0.25 };
-    scene.dt = 0.05;
-    let err = run(&scene, &mono(10, 1e-9)).unwrap_err();
+    settings.dt = 0.05;
+    let err = run(&scene, &settings, &mono(10, 1e-9)).unwrap_err();
     assert_eq!(err.field, "dt");
     assert!(err.to_string().contains("too long for the turbulence"));
 }
@@ -448,13 +461,13 @@ fn tracers_stay_well_mixed_in_a_room_and_long_steps_are_refused() {
 #[test]
 fn the_midpoint_step_keeps_tracers_well_mixed_where_the_default_does_not() {
     let share = |scheme: Scheme, dt: f64| {
-        let mut scene =
-            Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, dt, 100.0).with_walls(WallBehaviour::Reflect);
+        let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }).with_walls(WallBehaviour::Reflect);
+        let mut settings = RunSettings::new(dt, 100.0);
         scene.gravity = [0.0; 3];
         scene.flow = Flow::TurbulentRoom { friction_velocity: 0.01, core_rms: 0.5, core_time: 2.0, blend_length: 0.25 };
-        scene.scheme = scheme;
+        settings.scheme = scheme;
         let n = 10_000;
-        let result = run(&scene, &mono(n, 1e-9))?;
+        let result = run(&scene, &settings, &mono(n, 1e-9))?;
         let band = 0.1;
         let near = result.records.iter().filter(|r| r.position[2] < band || r.position[2] > 2.5 - band).count();
         Ok::<f64, depo_tracker::SceneError>(near as f64 / (n as f64 * 2.0 * band / 2.5))
@@ -481,9 +494,10 @@ fn brownian_contacts_between_step_ends_are_not_missed() {
     let (duration, layer) = (10.0, 3e-3);
     let n = 20_000;
     let deposited = |dt: f64| {
-        let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 0.1] }, dt, duration);
+        let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 0.1] });
+        let settings = RunSettings::new(dt, duration);
         scene.brownian = true;
-        let result = run(&scene, &mono(n, d).within([0.0; 3], [1.0, 1.0, layer])).unwrap();
+        let result = run(&scene, &settings, &mono(n, d).within([0.0; 3], [1.0, 1.0, layer])).unwrap();
         result.balance().deposited[0] as f64
     };
     // Exact: the cumulative flux of the diffusion-settling solution times the initial

@@ -36,7 +36,7 @@ pub fn report(run: &ChannelRun) -> Report<'_> {
         excursions_below_tau_plus: study.excursions_below,
         target_error: study.target_error,
         max_factor: study.max_factor,
-        duration_plus: study.scene.duration * u_star * u_star / nu,
+        duration_plus: study.settings.duration * u_star * u_star / nu,
         points: &run.rows,
     }
 }

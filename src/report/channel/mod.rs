@@ -112,7 +112,7 @@ pub fn study(options: &ChannelOptions, progress: &mut dyn Progress) -> Result<Ch
 pub fn run(scene: ChannelScene, options: &ChannelOptions, progress: &mut dyn Progress) -> Result<ChannelResult, Error> {
     let ChannelScene { mut study, source } = scene;
     if let Some(seed) = options.seed {
-        study.scene.seed = seed;
+        study.settings.seed = seed;
     }
     if let Some(list) = &options.tau_plus {
         if list.is_empty() {

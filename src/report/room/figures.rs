@@ -197,7 +197,7 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
     // the curves also as one CSV.
     let decay = dir.join("room-decay.svg");
     let a = study.scene.exchange_rate();
-    let end = study.scene.duration;
+    let end = study.settings.duration;
     let ventilation = |name: &str| Series::line(name, vec![(0.0, 1.0), (end / 60.0, (-a * end).exp())]).color(7);
     let mut panels = Vec::new();
     // One row per size and time; the particle density beside the diameter, since a study

@@ -54,7 +54,7 @@ pub fn report(r: &RoomResult) -> Report<'_> {
         particles_per_size: study.count,
         target_error: study.target_error,
         max_particles_per_size: study.max_count,
-        duration_s: study.scene.duration,
+        duration_s: study.settings.duration,
         air_volume_m3: study.scene.free_volume(),
         surface_to_volume_per_m: study.scene.surface_to_volume(),
         steady_source: super::rows::source_label(study),

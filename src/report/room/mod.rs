@@ -60,7 +60,7 @@ pub struct RoomResult {
 pub fn study(options: &RoomOptions, progress: &mut dyn Progress) -> Result<RoomResult, Error> {
     let mut scene = scene_file::room_scene(&options.scene)?;
     if let Some(seed) = options.seed {
-        scene.study.scene.seed = seed;
+        scene.study.settings.seed = seed;
     }
     run(scene, progress)
 }

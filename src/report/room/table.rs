@@ -40,7 +40,7 @@ pub fn table(r: &RoomResult) -> String {
         shown(size[2]),
         shown(u_star),
         particles.join("/"),
-        shown(study.scene.duration)
+        shown(study.settings.duration)
     );
     if let Some(target) = study.target_error {
         outln!(
@@ -187,8 +187,8 @@ pub fn table(r: &RoomResult) -> String {
     outln!(
         o,
         "Averages from {} s to {} s; {steps} particle-steps tracked (excursions not counted) in {seconds:.1} s.",
-        shown(study.transient * study.scene.duration),
-        shown(study.scene.duration)
+        shown(study.transient * study.settings.duration),
+        shown(study.settings.duration)
     );
     decay_table(o, rows, study.scene.exchange_rate() * 3600.0, !study.scene.openings.is_empty());
     steady_table(o, rows, study);

@@ -16,7 +16,8 @@ use crate::estimation::run::{run, Run};
 use crate::model::air::{Aerodynamics, Air, STANDARD_GRAVITY};
 use crate::model::flow::Flow;
 use crate::model::geometry::Geometry;
-use crate::model::scene::{Injection, Scene, Scheme, SizeDistribution};
+use crate::model::scene::{Injection, Scene, SizeDistribution};
+use crate::model::settings::{RunSettings, Scheme};
 
 /// One scheme at one step size.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,12 +40,15 @@ const DIAMETER: f64 = 30e-6;
 const DENSITY: f64 = 1000.0;
 const DURATION: f64 = 0.1;
 
-fn scene(dt: f64, scheme: Scheme) -> Scene {
-    let mut scene = Scene::new(Geometry::Channel { length: 100.0, width: 1.0, height: 0.01 }, dt, DURATION);
+fn scene() -> Scene {
+    let mut scene = Scene::new(Geometry::Channel { length: 100.0, width: 1.0, height: 0.01 });
     scene.flow = Flow::Poiseuille { max_speed: 1.0 };
     scene.gravity = [0.0, 0.0, -STANDARD_GRAVITY];
-    scene.scheme = scheme;
     scene
+}
+
+fn settings(dt: f64, scheme: Scheme) -> RunSettings {
+    RunSettings { scheme, ..RunSettings::new(dt, DURATION) }
 }
 
 fn injection(count: usize) -> Injection {
@@ -74,8 +78,9 @@ pub fn integrator_convergence(
     mut progress: impl FnMut(usize),
 ) -> Vec<ConvergenceRow> {
     let tau = relaxation_time();
-    let injection = injection(count);
-    let reference = run(&scene(whole_steps(tau / 1000.0), Scheme::Exponential), &injection).expect("valid scene");
+    let (scene, injection) = (scene(), injection(count));
+    let reference =
+        run(&scene, &settings(whole_steps(tau / 1000.0), Scheme::Exponential), &injection).expect("valid scene");
     let mut rows = Vec::new();
     for scheme in [Scheme::Exponential, Scheme::Euler] {
         let mut previous: Option<(f64, f64)> = None;
@@ -83,7 +88,7 @@ pub fn integrator_convergence(
             let dt = whole_steps(ratio * tau);
             let ratio = dt / tau;
             let start = Instant::now();
-            let result = run(&scene(dt, scheme), &injection).expect("valid scene");
+            let result = run(&scene, &settings(dt, scheme), &injection).expect("valid scene");
             let seconds = start.elapsed().as_secs_f64();
             let error = relative_error(&result, &reference);
             let order = match previous {

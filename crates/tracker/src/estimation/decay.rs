@@ -36,7 +36,7 @@
 //! own here, exact).
 //!
 //! **Window** ([`Run::decay_fit`]): from the start of the run's averaging window
-//! ([`crate::Scene::average_from`]; the studies' `transient`, which lets the room mix and the
+//! ([`crate::RunSettings::average_from`]; the studies' `transient`, which lets the room mix and the
 //! near-wall layers form, the counterpart of the mixing period the experiments leave out, and
 //! the same window the study's `beta` averages over) to the last sample time at which at least
 //! [`MIN_AIRBORNE`] particles are still in the air (the counterpart of stopping before the

@@ -6,12 +6,14 @@ use crate::estimation::run::run;
 use crate::model::error::SceneError;
 use crate::model::excursions::{Excursions, MAX_LEVELS};
 use crate::model::scene::{Injection, Scene};
+use crate::model::settings::RunSettings;
 
 /// Salt of the pilot runs' seed.
 const PILOT_SALT: u64 = 0x3c6e_f372_fe94_f82b;
 
 impl Excursions {
-    /// These excursions with their splitting factors calibrated for `scene` and `injection`:
+    /// These excursions with their splitting factors calibrated for `scene` run with `settings`
+    /// (whose own excursions are left aside) and `injection`:
     /// `rounds` pilot runs of `count` particles, each with the factors the one before found
     /// ([`Splitting::calibrated`](crate::model::excursions::Splitting::calibrated), at most `max` per level). The pilots use their own seed, so
     /// the run that follows is as unbiased as with any fixed factors. Also the last pilot's
@@ -20,18 +22,19 @@ impl Excursions {
     pub fn calibrated(
         mut self,
         scene: &Scene,
+        settings: &RunSettings,
         injection: &Injection,
         count: usize,
         rounds: usize,
         max: u32,
     ) -> Result<(Self, f64), SceneError> {
-        let mut pilot = scene.clone();
-        pilot.seed = scene.seed ^ PILOT_SALT;
+        let mut pilot = settings.clone();
+        pilot.seed = settings.seed ^ PILOT_SALT;
         let injection = Injection { count, ..*injection };
         let mut truncated = 0.0;
         for _ in 0..rounds {
             pilot.excursions = Some(self.clone());
-            let result = run(&pilot, &injection)?;
+            let result = run(scene, &pilot, &injection)?;
             let mut arrivals = [0.0; MAX_LEVELS];
             let mut branches = [0u64; MAX_LEVELS];
             let mut started = 0.0;

@@ -33,7 +33,8 @@ use rayon::prelude::*;
 
 use crate::model::error::SceneError;
 use crate::model::geometry::{in_plane_axes, Orientation, Wall};
-use crate::model::scene::{Injection, Scene, Scheme};
+use crate::model::scene::{Injection, Scene};
+use crate::model::settings::{RunSettings, Scheme};
 use crate::tracking::{track, track_excursions, track_wall_function, Fate, ParticleTally, Prepared, Record, WallTally};
 
 /// Particles per chunk of work: fixed, so the sums do not depend on the thread count, and
@@ -97,16 +98,17 @@ impl Cancel {
     }
 }
 
-/// Tracks `injection` through `scene` on the current rayon pool.
+/// Tracks `injection` through `scene` on the current rayon pool, with the time step, duration,
+/// seed and excursions of `settings`.
 ///
-/// Besides [`Scene::validate`], a turbulent scene's `dt` must keep `dt |d sigma / dy|` at or
+/// Besides [`Scene::validate`] and [`RunSettings::validate`], a turbulent scene's `dt` must keep `dt |d sigma / dy|` at or
 /// below [`MAX_STEP_GRADIENT`] ([`MAX_STEP_GRADIENT_MIDPOINT`] with the midpoint scheme) over
 /// the tabulated rms profiles: an error names `dt` otherwise.
-pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
-    let prepared = prepare(scene, injection)?;
-    let (records, particles, tallies) = track_range(scene, &prepared, 0..injection.count)?;
-    let duration = prepared.steps as f64 * scene.dt;
-    let smallest_weight = smallest_weight(scene);
+pub fn run(scene: &Scene, settings: &RunSettings, injection: &Injection) -> Result<Run, SceneError> {
+    let prepared = prepare(scene, settings, injection)?;
+    let (records, particles, tallies) = track_range(settings, &prepared, 0..injection.count)?;
+    let duration = prepared.steps as f64 * settings.dt;
+    let smallest_weight = smallest_weight(settings);
     Ok(Run {
         records,
         particles,
@@ -114,24 +116,29 @@ pub fn run(scene: &Scene, injection: &Injection) -> Result<Run, SceneError> {
         walls: prepared.surfaces,
         volume: scene.free_volume(),
         duration,
-        dt: scene.dt,
+        dt: settings.dt,
         window: prepared.window,
         smallest_weight,
     })
 }
 
-/// `previous`, a run of `scene` with the first particles of `injection`, carried on to all
+/// `previous`, a run of `scene` with `settings` and the first particles of `injection`, carried on to all
 /// `injection.count` of them: the particles it lacks are tracked and added. The result is
 /// the run of the whole injection, particle for particle (each particle's history depends
 /// on its id and the seed alone); the tallies' sums may differ from it in the last bits.
-pub fn run_more(scene: &Scene, injection: &Injection, mut previous: Run) -> Result<Run, SceneError> {
-    let prepared = prepare(scene, injection)?;
+pub fn run_more(
+    scene: &Scene,
+    settings: &RunSettings,
+    injection: &Injection,
+    mut previous: Run,
+) -> Result<Run, SceneError> {
+    let prepared = prepare(scene, settings, injection)?;
     let done = previous.records.len();
     if done > injection.count {
         return Err(SceneError::new("count", injection.count as f64, "is fewer than the particles already run"));
     }
-    let (records, particles, tallies) = track_range(scene, &prepared, done..injection.count)?;
-    previous.smallest_weight = previous.smallest_weight.min(smallest_weight(scene));
+    let (records, particles, tallies) = track_range(settings, &prepared, done..injection.count)?;
+    previous.smallest_weight = previous.smallest_weight.min(smallest_weight(settings));
     previous.records.extend(records);
     previous.particles.extend(particles);
     for (sum, x) in previous.tallies.iter_mut().zip(tallies) {
@@ -140,27 +147,32 @@ pub fn run_more(scene: &Scene, injection: &Injection, mut previous: Run) -> Resu
     Ok(previous)
 }
 
-/// The smallest weight a deposit can carry in `scene`: 1, or with excursions the deepest
-/// level's weight over the largest sampling of any class of crossing.
-fn smallest_weight(scene: &Scene) -> f64 {
-    scene.excursions.as_ref().map_or(1.0, |e| {
+/// The smallest weight a deposit can carry in a run with `settings`: 1, or with excursions the
+/// deepest level's weight over the largest sampling of any class of crossing.
+fn smallest_weight(settings: &RunSettings) -> f64 {
+    settings.excursions.as_ref().map_or(1.0, |e| {
         let most = e.class_sampling.iter().copied().fold(0.0, f64::max);
         e.splitting.weight(e.splitting.levels.len()) / (e.sampling * most)
     })
 }
 
-/// The scene validated and prepared for `injection`.
-fn prepare<'a>(scene: &'a Scene, injection: &'a Injection) -> Result<Prepared<'a>, SceneError> {
+/// The scene and its settings validated and prepared for `injection`.
+fn prepare<'a>(
+    scene: &'a Scene,
+    settings: &'a RunSettings,
+    injection: &'a Injection,
+) -> Result<Prepared<'a>, SceneError> {
     scene.validate(injection)?;
-    let mut prepared = Prepared::new(scene, injection)?;
+    settings.validate(scene)?;
+    let mut prepared = Prepared::new(scene, settings, injection)?;
     prepared.stop = Cancel::watched().map(|c| c.0);
-    let (limit, message) = if scene.scheme == Scheme::Midpoint {
+    let (limit, message) = if settings.scheme == Scheme::Midpoint {
         (MAX_STEP_GRADIENT_MIDPOINT, "is too long for the turbulence: dt times the steepest gradient of a velocity fluctuation's rms must be at most 0.1 with the midpoint scheme")
     } else {
         (MAX_STEP_GRADIENT, "is too long for the turbulence: dt times the steepest gradient of a velocity fluctuation's rms must be at most 0.05 (0.1 with the midpoint scheme)")
     };
-    if scene.dt * prepared.field.steepest_gradient() > limit {
-        return Err(SceneError::new("dt", scene.dt, message));
+    if settings.dt * prepared.field.steepest_gradient() > limit {
+        return Err(SceneError::new("dt", settings.dt, message));
     }
     Ok(prepared)
 }
@@ -172,7 +184,11 @@ type Tracked = (Vec<Record>, Vec<ParticleTally>, Vec<WallTally>);
 /// their records and tallies in id order, and their wall tallies summed in chunk order. A
 /// chunk does not start once the watched [`Cancel`] is cancelled, and the particles in hand
 /// stop (`Prepared::stop`): the range then ends with [`SceneError::cancelled`].
-fn track_range(scene: &Scene, prepared: &Prepared<'_>, ids: std::ops::Range<usize>) -> Result<Tracked, SceneError> {
+fn track_range(
+    settings: &RunSettings,
+    prepared: &Prepared<'_>,
+    ids: std::ops::Range<usize>,
+) -> Result<Tracked, SceneError> {
     let wall_count = prepared.surfaces.len();
     let window = prepared.window;
     let first = ids.start;
@@ -189,7 +205,7 @@ fn track_range(scene: &Scene, prepared: &Prepared<'_>, ids: std::ops::Range<usiz
             }
             let mut tally = vec![WallTally::default(); wall_count];
             let ids = (c * CHUNK).max(first)..((c + 1) * CHUNK).min(ids.end);
-            let (records, particles) = match &scene.excursions {
+            let (records, particles) = match &settings.excursions {
                 Some(excursions) => track_excursions(prepared, excursions, ids, &mut tally),
                 None if prepared.wall_function.is_some() => track_wall_function(prepared, ids, &mut tally),
                 None => {
@@ -509,17 +525,21 @@ mod tests {
 
     /// Brownian 0.1 um particles in still air in a 1 m box for 1000 s of 10 ms steps: about
     /// 1e5 steps each, far more than a second's work for `count` of them.
-    fn long_run(count: usize) -> (Scene, Injection) {
-        let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] }, 0.01, 1000.0);
+    fn long_run(count: usize) -> (Scene, RunSettings, Injection) {
+        let mut scene = Scene::new(Geometry::Room { size: [1.0, 1.0, 1.0] });
         scene.brownian = true;
-        (scene, Injection::new(count, SizeDistribution::Monodisperse { diameter: 0.1e-6 }, 1000.0))
+        (
+            scene,
+            RunSettings::new(0.01, 1000.0),
+            Injection::new(count, SizeDistribution::Monodisperse { diameter: 0.1e-6 }, 1000.0),
+        )
     }
 
     /// A run cancelled from another thread ends within a second with the cancelled error, where
     /// it would take minutes; the token is no longer watched after `watch` returns.
     #[test]
     fn a_cancelled_run_returns_quickly() {
-        let (scene, injection) = long_run(1_000_000);
+        let (scene, settings, injection) = long_run(1_000_000);
         let cancel = Cancel::new();
         let start = Instant::now();
         let result = std::thread::scope(|s| {
@@ -527,7 +547,7 @@ mod tests {
                 std::thread::sleep(Duration::from_millis(200));
                 cancel.cancel();
             });
-            cancel.watch(|| run(&scene, &injection))
+            cancel.watch(|| run(&scene, &settings, &injection))
         });
         let took = start.elapsed();
         let error = result.expect_err("the run was cancelled");
@@ -535,20 +555,20 @@ mod tests {
         assert_eq!(error.to_string(), "the run was cancelled");
         assert!(took < Duration::from_secs(2), "the cancelled run took {took:?}");
         // Without the token watched, a (short) run goes through.
-        let (scene, injection) = long_run(4);
-        assert_eq!(run(&scene, &injection).map(|r| r.records.len()), Ok(4));
+        let (scene, settings, injection) = long_run(4);
+        assert_eq!(run(&scene, &settings, &injection).map(|r| r.records.len()), Ok(4));
     }
 
     /// A token cancelled before the run stops it before any particle; one not cancelled
     /// changes nothing, to the bit.
     #[test]
     fn a_watched_token_changes_nothing_until_cancelled() {
-        let (mut scene, injection) = long_run(16);
-        scene.duration = 1.0;
+        let (scene, mut settings, injection) = long_run(16);
+        settings.duration = 1.0;
         let cancelled = Cancel::new();
         cancelled.cancel();
-        assert!(cancelled.watch(|| run(&scene, &injection)).is_err_and(|e| e.is_cancelled()));
-        let watched = Cancel::new().watch(|| run(&scene, &injection)).unwrap();
-        assert_eq!(watched, run(&scene, &injection).unwrap());
+        assert!(cancelled.watch(|| run(&scene, &settings, &injection)).is_err_and(|e| e.is_cancelled()));
+        let watched = Cancel::new().watch(|| run(&scene, &settings, &injection)).unwrap();
+        assert_eq!(watched, run(&scene, &settings, &injection).unwrap());
     }
 }

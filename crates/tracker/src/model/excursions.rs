@@ -75,8 +75,9 @@
 //! step counts as `coarse_factor` steps towards [`Excursions::max_duration`]. Coarse steps are
 //! an approximation of the same dynamics, not a change of the estimator: what they cost in
 //! accuracy is the step's discretisation error, measured against the midpoint scheme at the
-//! scene's step (see [`CHANNEL_COARSE_FACTOR`](crate::studies::channel::CHANNEL_COARSE_FACTOR) for the
-//! channel study's figures); the first-order scheme in coarse steps was 40 % off and is not
+//! scene's step (the channel study's figures, for
+//! [`CHANNEL_COARSE_FACTOR`](crate::studies::channel::CHANNEL_COARSE_FACTOR), are in
+//! docs/performance-log.md); the first-order scheme in coarse steps is far off and is not
 //! offered. Scenes with furnishings or openings take the scene's step throughout.
 //!
 //! ## Sampling by class of crossing
@@ -332,6 +333,7 @@ impl Splitting {
 mod tests {
     use super::*;
     use crate::model::scene::{Injection, Scene};
+    use crate::model::settings::RunSettings;
 
     #[test]
     fn levels_count_the_distances_passed() {
@@ -372,13 +374,14 @@ mod tests {
         assert_eq!(with(f64::NAN, 2.0, 10.0).validate().unwrap_err().field, "sweeps.enter");
         assert_eq!(with(3.0, 3.0, 10.0).validate().unwrap_err().field, "sweeps.leave");
         assert_eq!(with(3.0, 2.0, 0.0).validate().unwrap_err().field, "sweeps.sampling");
-        let mut room = Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 60.0);
-        room.excursions = Some(with(3.0, 2.0, 10.0));
+        let room = Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] });
+        let settings = RunSettings { excursions: Some(with(3.0, 2.0, 10.0)), ..RunSettings::new(0.1, 60.0) };
         let injection = Injection::new(1, crate::SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-        assert_eq!(room.validate(&injection).unwrap_err().field, "sweeps");
-        let mut channel = Scene::new(crate::Geometry::Channel { length: 0.1, width: 0.1, height: 0.01 }, 1e-4, 1.0);
-        channel.excursions = Some(with(3.0, 2.0, 10.0));
-        assert!(channel.validate(&injection).is_ok());
+        assert!(room.validate(&injection).is_ok());
+        assert_eq!(settings.validate(&room).unwrap_err().field, "sweeps");
+        let channel = Scene::new(crate::Geometry::Channel { length: 0.1, width: 0.1, height: 0.01 });
+        let settings = RunSettings { excursions: Some(with(3.0, 2.0, 10.0)), ..RunSettings::new(1e-4, 1.0) };
+        assert!(channel.validate(&injection).is_ok() && settings.validate(&channel).is_ok());
     }
 
     #[test]

@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: the openings' potential flow, its solvers and the cell a particle reads it from.
+//!
 //! The mean flow between a room's openings ([`super::openings`]): a potential flow solved once
 //! per study on a staggered grid, and the cell a particle carries to read it from step to step.
 //!

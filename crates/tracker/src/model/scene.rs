@@ -1,9 +1,11 @@
-//! A scene: geometry, air, flow, forces, walls, time stepping, and the particles injected into
-//! it. Everything is checked once, in [`Scene::validate`]; the hot loop trusts it.
+//! A scene: geometry, air, flow, forces and walls, and the particles injected into it; how a
+//! run of it is estimated (time step, duration, seed, excursions) is a
+//! [`RunSettings`](crate::model::settings::RunSettings) beside it. Everything is checked
+//! once, in [`Scene::validate`] and [`RunSettings::validate`](crate::model::settings::RunSettings::validate);
+//! the hot loop trusts it.
 
 use crate::model::air::{Air, STANDARD_GRAVITY};
 use crate::model::error::SceneError;
-use crate::model::excursions::Excursions;
 use crate::model::flow::Flow;
 use crate::model::furnishing::{free_volume, Furnishing, FACE_NAMES, ROOM_SURFACES};
 use crate::model::geometry::{Geometry, Wall};
@@ -33,32 +35,6 @@ pub enum NearWall {
     /// the wall), and the same variance and Lagrangian time (see [`crate::intermittency`]).
     /// Channels only.
     Intermittent,
-}
-
-/// How a step is integrated.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Scheme {
-    /// The drag relaxation solved exactly over the step for the fluid velocity seen at its start
-    /// (and the Brownian increments sampled exactly): stable for any `dt / tau`. The default.
-    #[default]
-    Exponential,
-    /// Explicit (forward) Euler, for comparison: first order, unstable for `dt > 2 tau`.
-    Euler,
-    /// The exponential scheme with the turbulence taken half a step on: the fluid velocity
-    /// seen over the step, and the step of its normalised fluctuation (`sigma`, `T_L` and the
-    /// well-mixed drift), are read where the particle is half a step on, flying towards the
-    /// fluid velocity seen at the start (a predictor), not where it starts. The default takes
-    /// them at the start, which is first order in `dt` times the turbulence's gradients; this
-    /// is second order there, so tracers stay well mixed and a room's `beta` holds at steps
-    /// several times longer (the room study uses it; figures in docs/validation.md, "The
-    /// time step"). In a room's turbulence (no mean profile, no correlated components) the
-    /// predictor takes the fluctuation's scale `g sigma` where the last step read it rather
-    /// than reading the profiles at the start: the predicted point moves by `O(dt^2)` (with
-    /// Brownian motion, also by `O(dt^(3/2))` of zero mean), which keeps the step second
-    /// order, and each step reads the turbulence's profiles once instead of twice. With a
-    /// mean profile (a channel's) each step reads them twice. Particles go one at a time (the
-    /// tracker's lanes do not have it).
-    Midpoint,
 }
 
 /// Particle sizes at injection.
@@ -110,7 +86,8 @@ impl Injection {
     }
 }
 
-/// Everything about a run but its particles.
+/// What is simulated, but its particles (see [`Injection`]) and how the run is estimated
+/// (see [`RunSettings`](crate::model::settings::RunSettings)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     /// The domain.
@@ -137,23 +114,9 @@ pub struct Scene {
     pub wall_function: Option<WallFunction>,
     /// One behaviour per wall, in the order of [`Geometry::walls`].
     pub walls: Vec<WallBehaviour>,
-    /// The integrator.
-    pub scheme: Scheme,
-    /// Time step, s.
-    pub dt: f64,
-    /// Simulated time, s (rounded up to whole steps).
-    pub duration: f64,
-    /// Seed of the per-particle random streams.
-    pub seed: u64,
     /// Keep the well-mixed drift of the dispersion model (on by default; off only to show what
     /// it is for).
     pub drift_correction: bool,
-    /// Start of the averaging window of the run's deposition velocities and loss rates, s (the
-    /// window ends with the run): what comes before lets the near-wall layers form.
-    pub average_from: f64,
-    /// Near-wall excursions, for deposition rates too small to resolve by plain tracking;
-    /// `None` (the default) counts the tracked particles' own deposits.
-    pub excursions: Option<Excursions>,
     /// Air-exchange rate `a`, 1/s (air changes per hour / 3600; 0, the default, for a closed
     /// room). Ventilation takes air from the well-mixed room: each airborne particle is
     /// exhausted at a rate `a`, wherever it is, so that without deposition the airborne
@@ -173,9 +136,9 @@ pub struct Scene {
 
 impl Scene {
     /// A scene with standard air, gravity along `-z` and every wall a perfect sink; still air,
-    /// no Brownian motion, Stokes drag, the exponential scheme.
+    /// no Brownian motion, Stokes drag.
     #[must_use]
-    pub fn new(geometry: Geometry, dt: f64, duration: f64) -> Self {
+    pub fn new(geometry: Geometry) -> Self {
         let walls = vec![WallBehaviour::Sink; geometry.walls().len()];
         Self {
             geometry,
@@ -188,13 +151,7 @@ impl Scene {
             near_wall: NearWall::Gaussian,
             wall_function: None,
             walls,
-            scheme: Scheme::Exponential,
-            dt,
-            duration,
-            seed: 1,
             drift_correction: true,
-            average_from: 0.0,
-            excursions: None,
             air_exchange: 0.0,
             openings: Vec::new(),
             furnishings: Vec::new(),
@@ -267,12 +224,6 @@ impl Scene {
         self
     }
 
-    /// Number of steps the run takes.
-    #[must_use]
-    pub fn steps(&self) -> usize {
-        ((self.duration / self.dt) - 1e-9).ceil().max(0.0) as usize
-    }
-
     /// Checks the scene and the injection; the error names the first offending field.
     pub fn validate(&self, injection: &Injection) -> Result<(), SceneError> {
         let size = self.geometry.size();
@@ -285,26 +236,6 @@ impl Scene {
         positive("air.viscosity", self.air.viscosity)?;
         for g in self.gravity {
             finite("gravity", g)?;
-        }
-        positive("dt", self.dt)?;
-        if !(self.duration.is_finite() && self.duration >= 0.0) {
-            return Err(SceneError::new("duration", self.duration, "must be finite and not negative"));
-        }
-        if !(self.average_from.is_finite()
-            && self.average_from >= 0.0
-            && self.average_from < self.duration.max(f64::MIN_POSITIVE))
-        {
-            return Err(SceneError::new(
-                "average_from",
-                self.average_from,
-                "must be finite, not negative and before the end of the run",
-            ));
-        }
-        if let Some(excursions) = &self.excursions {
-            excursions.validate()?;
-            if excursions.sweeps.is_some() && !matches!(self.geometry, Geometry::Channel { .. }) {
-                return Err(SceneError::new("sweeps", 0.0, "are for a channel only"));
-            }
         }
         if !(self.air_exchange.is_finite() && self.air_exchange >= 0.0) {
             return Err(SceneError::new("air_exchange", self.air_exchange, "must be finite and not negative"));
@@ -424,13 +355,6 @@ impl Scene {
                 "wall_function.layer_plus",
                 wf.layer_plus,
                 "must make the layer thinner than a quarter of the domain across its walls",
-            ));
-        }
-        if self.excursions.is_some() {
-            return Err(SceneError::new(
-                "wall_function",
-                1.0,
-                "counts deposits itself: near-wall excursions must be off",
             ));
         }
         if self.near_wall == NearWall::Intermittent {

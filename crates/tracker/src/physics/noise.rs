@@ -5,14 +5,14 @@
 //! run gives the same result on any number of threads.
 //!
 //! A turbulent Brownian step needs nine normal variates, and drawing them one call at a time
-//! (rand_distr's `StandardNormal`, which does not inline) took about 40 % of the step. Here
+//! (rand_distr's `StandardNormal`, which does not inline) took a large share of the step. Here
 //! they are made a block at a time by the ziggurat method of Marsaglia & Tsang (2000), laid
 //! out so that the common case vectorises:
 //!
 //! - four xoshiro256++ streams (Blackman & Vigna 2021) run side by side, one per vector lane;
 //! - each 64-bit word makes one attempt: 10 bits pick one of 1024 layers `i`, 52 other bits a
-//!   uniform `u` in `[-1, 1)`, and `x = u x_i` is accepted when `|x| < x_{i+1}` (99.57 % of
-//!   attempts), with no branch;
+//!   uniform `u` in `[-1, 1)`, and `x = u x_i` is accepted when `|x| < x_{i+1}` (all but a
+//!   fraction of a per cent of attempts), with no branch;
 //! - the attempts that fall outside their layer's core finish afterwards, one by one, on a
 //!   fifth (scalar) stream, exactly as the ziggurat prescribes (the wedge test, the tail, and
 //!   fresh attempts until one is accepted);
@@ -20,10 +20,10 @@
 //!   arithmetic on the same bits (tested bit for bit against the plain version).
 //!
 //! The ziggurat is exact for any number of layers; more layers only make the core of each
-//! layer a larger part of it. rand_distr's 256 layers leave 1.49 % of attempts to the slow
-//! path, which then took about 12 % of a turbulent Brownian step (its branches mispredict and
-//! the wedge test calls `exp`); 1024 layers leave 0.43 %, for an 8 KB table of edges (the
-//! speed-up is in docs/performance-log.md).
+//! layer a larger part of it, and so leave fewer attempts to the slow path, whose branches
+//! mispredict and whose wedge test calls `exp`: 1024 layers rather than rand_distr's 256, for
+//! an 8 KB table of edges (the shares and the speed-up are in docs/performance-log.md, "Moved
+//! from the README: the tracker's speed, step by step").
 //!
 //! Every attempt uses fresh bits and every slot ends with exactly one accepted sample, so the
 //! variates are independent standard normals: the block layout changes which bits make which
@@ -135,8 +135,8 @@ impl Xoshiro4 {
 ///
 /// Neither SSE2 nor AVX2 has a 64-bit vector rotate. For a rotation it recognises (a constant
 /// amount, or `rotate_left`) LLVM moved the four lanes out to general registers, rotated them
-/// one by one and moved them back: about a quarter of the block's time on a Zen 3, measured
-/// when this loop was also the AVX2 build. Two shifts by unknown amounts and an `or` stay in
+/// one by one and moved them back, a good part of the block's time (docs/performance-log.md).
+/// Two shifts by unknown amounts and an `or` stay in
 /// the vector register. The result is the same. (Where the processor has AVX2 the first
 /// attempts are [`first_attempts_avx2`], whose shifts by constants stay vector shifts.)
 #[derive(Clone, Copy, Debug)]

@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: the tabulated dispersion model a run reads (its profiles' table and look-ups).
+//!
 //! The air flow a particle sees: a mean velocity and, for turbulent scenes, velocity
 //! fluctuations from a stochastic model that respects the near-wall anisotropy.
 //!
@@ -246,9 +248,8 @@ impl Table {
 
     /// [`Table::at`] for the four distances of the tracker's four lanes, bit for bit. With
     /// `AVX2` (which the caller may set only where the processor has AVX2) the cell search
-    /// and the gather of the four nodes are AVX2 instructions, about 15 fewer instructions per
-    /// particle-step than what the compiler makes of four [`Table::at`]s; otherwise it is
-    /// those four.
+    /// and the gather of the four nodes are AVX2 instructions, fewer than what the compiler
+    /// makes of four [`Table::at`]s (docs/performance-log.md); otherwise it is those four.
     #[inline(always)]
     pub fn at4<const AVX2: bool>(&self, y: [f64; 4]) -> Nodes4 {
         #[cfg(target_arch = "x86_64")]

@@ -8,6 +8,7 @@ use crate::model::excursions::Sweeps;
 use crate::model::flow::Flow;
 use crate::model::geometry::Geometry;
 use crate::model::scene::{Injection, Scene, SizeDistribution};
+use crate::model::settings::RunSettings;
 use crate::physics::correlations::{diameter_for_tau_plus, papavergos_hedley, schmidt, wood};
 use crate::tracking::WallTally;
 
@@ -16,62 +17,56 @@ use crate::studies::study::*;
 /// The longest a channel study follows an excursion, in wall time units (`nu / u*^2`). Below
 /// `tau+ = 3` particles hover in the viscous sublayer, where the turbulence has all but
 /// vanished and Brownian motion at `Sc ~ 1e6` crosses the last wall unit slowly: given up
-/// after 1e4 wall time units, the weight left hovering was 3-4 times the weight deposited and
-/// `V+` came out half of what it is (`tau+ = 0.3`, 500 particles: 0.070 of Wood with 1e4,
-/// 0.134 with 3e4 and 0.132 with 1e5, where the share given up fell to 6 % and then below
-/// 0.5 %). After 1e5 none is left to give up, so the estimate has no truncation bias left to
-/// speak of; the printed share given up says so for each run.
+/// much sooner, the weight left hovering outweighs the weight deposited and `V+` comes out
+/// low. After 1e5 next to none is left to give up, so the estimate has no truncation bias
+/// left to speak of; the printed share given up says so for each run. (Measurements in
+/// docs/performance-log.md, "Channel excursions followed to 10^5 wall time units".)
 pub const CHANNEL_LONGEST_EXCURSION: f64 = 1e5;
 
 /// The innermost splitting level of a channel study's excursions, in wall units (from the
 /// particle's surface): levels halve from 15 wall units down to 0.23. Below `tau+ = 3` the
-/// branches spend about 95 % of their steps within one wall unit of the wall, hovering for
+/// branches spend most of their steps within one wall unit of the wall, hovering for
 /// hundreds to thousands of wall time units, so each split below a few tenths of a wall unit
-/// multiplies the costliest branches. Measured at 1000 particles per `tau+` (single runs,
-/// efficiency `1 / (relative error^2 time)`), three more levels down to 0.03 wall units gave
-/// 21, 14 and 24 at `tau+` 0.1, 0.3 and 1, and stopping at 0.23 gave 30, 28 and 31 with the
-/// same `V+` within the errors; stopping one level further out (0.47) gave 22, 20 and 25.
+/// multiplies the costliest branches; one level further out splits too little. The
+/// efficiencies of each choice are in docs/performance-log.md ("The channel study: splitting
+/// levels that stop at 0.23 wall units").
 pub const CHANNEL_INNERMOST_LEVEL: f64 = 0.2;
 
 /// The channel study catches strong sweeps on their way to the near-wall layer
 /// ([`Excursions::sweeps`](crate::model::excursions::Excursions::sweeps)) from this `tau+` on:
 /// where a strong sweep's wall-ward speed (a few `u*`) times the particle's relaxation time carries
 /// it across the sublayer's few wall units. At `tau+` 0.1-1, where Brownian motion and the
-/// turbulence within the sublayer carry the particles the last part of the way, sweeps took 2-2.5
-/// times the run time for errors 3-25 % smaller, so they stay off there.
+/// turbulence within the sublayer carry the particles the last part of the way, sweeps cost
+/// more than the error they save, so they stay off there (docs/performance-log.md).
 pub const CHANNEL_SWEEPS_FROM: f64 = 3.0;
 
 /// The sweeps the channel study catches: the fluid's wall-ward `zeta` above 3 (0.13 % of the
 /// time in a Gaussian) until it falls below 2, ten excursions per such entry, and then one
-/// per crossing of the layer (not the three the studies start elsewhere). Measured at
-/// `tau+ = 3`, 1000 particles (efficiency `1 / (relative error^2 time)`): without sweeps the
-/// relative error was 19-40 % in 8-9 s (three seeds; efficiency 0.7-3.6); with these,
-/// 11-16 % in 2.8-4.4 s (five seeds; 13-24); with three excursions per crossing and thirty
-/// per sweep, 7-10 % in 8-12 s (about the same efficiency, at three times the cost). With
-/// those, thresholds of 2.5 or 3.5, and sweeps counted only within 45, 60 or 100 wall units
-/// of the wall, did no better. The table is in docs/performance-log.md.
+/// per crossing of the layer (not the three the studies start elsewhere): the most efficient
+/// of the settings compared at `tau+ = 3` (`1 / (relative error^2 time)`; the table is in
+/// docs/performance-log.md, "The channel at `tau+ = 3`").
 pub const CHANNEL_SWEEPS: Sweeps = Sweeps { enter: 3.0, leave: 2.0, sampling: 10.0 };
 
 /// The coarse steps of a channel study's excursions below [`CHANNEL_SWEEPS_FROM`]
 /// ([`Excursions::coarse_factor`](crate::model::excursions::Excursions::coarse_factor)): four times
 /// the study's step (0.8 wall time units), with the midpoint scheme, wherever they cannot reach a
 /// wall (the wall-normal rms' steepest slope, about 0.04 `u*` per wall unit, times 0.8 is below the
-/// gradient limit, so that limit does not bind here). Measured at `tau+` 0.1, 0.3 and 1, 1000
-/// particles, three seeds, against the same excursions stepped with the midpoint scheme at the
-/// study's step wherever clear of a wall (ratios of `V+` pooled over the nine runs, and run time
-/// against the study's step throughout): factor 2 gave 1.00 +- 0.03 in 1.0 times the time; 4 gave
-/// 1.03 +- 0.03 in 0.59; 8 gave 1.11 +- 0.04 in 0.39. The study's step throughout, with the default
-/// scheme, gave 1.08 +- 0.04: its first-order error in the sublayer, which the midpoint scheme
-/// takes out. Coarse steps of 4 with the default scheme gave 1.4 times the study's step's `V+` at
-/// `tau+ = 0.3`. From `tau+ = 3`, where sweeps carry the particles to the wall rather than
-/// hovering, they are off: 1.4 times faster there, but over five seeds no more efficient.
+/// gradient limit, so that limit does not bind here). Four keeps `V+` within the errors of the
+/// study's step while taking well under its time; eight drifts high. The midpoint scheme is
+/// what makes coarse steps safe: the default scheme's first-order error in the sublayer grows
+/// with the step. From `tau+ = 3`, where sweeps carry the particles to the wall rather than
+/// hovering, they are off: faster there, but no more efficient. (Measurements in
+/// docs/performance-log.md, "The channel below `tau+ = 3`".)
 pub const CHANNEL_COARSE_FACTOR: u32 = 4;
 
 /// A channel study: one run per `tau+` in a turbulent channel.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ChannelStudy {
-    /// The channel, its air, flow (a [`Flow::TurbulentChannel`]), walls and time stepping.
+    /// The channel, its air, flow (a [`Flow::TurbulentChannel`]) and walls.
     pub scene: Scene,
+    /// How each `tau+` is run: time step, scheme, duration and seed. The study sets the
+    /// averaging window from `transient`, and below `excursions_below` the excursions.
+    pub settings: RunSettings,
     /// Dimensionless relaxation times `tau+ = tau u*^2 / nu`.
     pub tau_plus: Vec<f64>,
     /// Particles per `tau+`.
@@ -109,16 +104,14 @@ impl Default for ChannelStudy {
         let u_star = 0.3;
         let unit = air.kinematic_viscosity() / u_star;
         let time = unit / u_star;
-        let mut scene = Scene::new(
-            Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 300.0 * unit },
-            0.2 * time,
-            3000.0 * time,
-        );
+        let mut scene =
+            Scene::new(Geometry::Channel { length: 1000.0 * unit, width: 300.0 * unit, height: 300.0 * unit });
         scene.gravity = [0.0; 3];
         scene.flow = Flow::TurbulentChannel { friction_velocity: u_star };
         scene.brownian = true;
         Self {
             scene,
+            settings: RunSettings::new(0.2 * time, 3000.0 * time),
             tau_plus: vec![0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0],
             count: 4000,
             density: 1000.0,
@@ -182,8 +175,9 @@ impl ChannelStudy {
             let excursions = tp < self.excursions_below && self.scene.wall_function.is_none();
             let count = if excursions { self.excursion_count } else { self.count };
             let injection = Injection::new(count, SizeDistribution::Monodisperse { diameter: d }, self.density);
-            let mut scene = self.scene.clone();
-            scene.average_from = self.transient * scene.steps() as f64 * scene.dt;
+            let scene = &self.scene;
+            let mut settings = self.settings.clone();
+            settings.average_from = self.transient * settings.steps() as f64 * settings.dt;
             let mut calibration_seconds = 0.0;
             if excursions {
                 // Factors up to 4 (larger ones made the deep branches, which live long in
@@ -193,11 +187,11 @@ impl ChannelStudy {
                 let (inner, longest) = (CHANNEL_INNERMOST_LEVEL, CHANNEL_LONGEST_EXCURSION);
                 // Without sweeps the branches hover in the viscous sublayer: coarse steps there.
                 let coarse = if sweeps.is_some() { 1 } else { CHANNEL_COARSE_FACTOR };
-                (scene, _, calibration_seconds) =
-                    with_excursions(scene, &injection, pilot, inner, (longest, longest), 4, sweeps, coarse)?;
+                (settings, _, calibration_seconds) =
+                    with_excursions(scene, settings, &injection, pilot, inner, (longest, longest), 4, sweeps, coarse)?;
             }
             let all_walls = |r: &Run| r.deposition_velocity(&(0..r.walls.len()).collect::<Vec<_>>());
-            let mut result = run(&scene, &injection)?;
+            let mut result = run(scene, &settings, &injection)?;
             if let Some(target) = self.target_error {
                 // Two rounds: the second where the pooled estimate still misses the target (an
                 // error that rests on rare events is itself rough from the first particles).
@@ -211,7 +205,7 @@ impl ChannelStudy {
                     if needed <= have || needed as f64 > self.max_factor * count as f64 {
                         break;
                     }
-                    result = run_more(&scene, &Injection { count: needed, ..injection }, result)?;
+                    result = run_more(scene, &settings, &Injection { count: needed, ..injection }, result)?;
                     have = needed;
                 }
             }
@@ -235,9 +229,9 @@ impl ChannelStudy {
                 papavergos_hedley: papavergos_hedley(tp, sc),
                 particle_steps: result.particle_steps(),
                 particles: result.records.len(),
-                excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
+                excursions: settings.excursions.as_ref().map(|_| result.truncated_share()),
                 calibration_seconds,
-                sweeps: scene.excursions.as_ref().is_some_and(|e| e.sweeps.is_some()),
+                sweeps: settings.excursions.as_ref().is_some_and(|e| e.sweeps.is_some()),
                 tally: total(&result.tallies),
                 layer_concentration,
             });

@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: size distributions (modes, classes, bins, PM cuts).
+//!
 //! Particle size distributions as aerosol science states them, and what a room does to their
 //! mass: deposited per surface, exhausted and still airborne, for all of it and for PM2.5 and
 //! PM10.

@@ -257,7 +257,7 @@ pub fn integrate(bins: &[Bin], fates: &[Fates], weights: &[f64]) -> MassSplit {
 ///     amount: Amount::MassConcentration(20e-9),
 /// };
 /// let mut study = RoomStudy { count: 20, target_error: None, excursions: false, ..RoomStudy::default() };
-/// study.scene.duration = 10.0;
+/// study.settings.duration = 10.0;
 /// let distribution = Distribution::Modes { modes: vec![mode], bins: 6, range: None };
 /// let (_, balance) = DistributionStudy { study, distribution }.run(|_| {}).unwrap();
 /// let floor = balance.all.deposited[0]; // kg/m^3 of the room's air, with its errors

@@ -9,7 +9,8 @@ use crate::model::error::SceneError;
 use crate::model::excursions::{crossing_class, CROSSING_CLASSES};
 use crate::model::flow::Flow;
 use crate::model::geometry::{Geometry, Orientation};
-use crate::model::scene::{Injection, Scene, Scheme, SizeDistribution};
+use crate::model::scene::{Injection, Scene, SizeDistribution};
+use crate::model::settings::{RunSettings, Scheme};
 use crate::physics::correlations::LaiNazaroff;
 use crate::studies::filtration::Filtration;
 use crate::studies::steady::{near_floor, near_floor_volume, Source, SteadyState};
@@ -20,8 +21,11 @@ use crate::studies::study::*;
 /// A room study: one run per diameter in `scene` (a room with a turbulent-room flow).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RoomStudy {
-    /// The room, its air, flow, walls and time stepping.
+    /// The room, its air, flow and walls.
     pub scene: Scene,
+    /// How each size is run: time step, scheme, duration and seed. The study sets the
+    /// averaging window from `transient`, and with `excursions` the excursions.
+    pub settings: RunSettings,
     /// Particle diameters, m.
     pub diameters: Vec<f64>,
     /// Particles per diameter: all of them without `target_error`, the first ones with it.
@@ -67,15 +71,15 @@ impl Default for RoomStudy {
     /// Brownian motion, perfectly absorbing surfaces (as Lai & Nazaroff assume), 0.01-10 um
     /// unit-density particles, 1800 s of 0.1 s steps of the midpoint scheme, averages from
     /// 180 s on. The midpoint scheme ([`Scheme::Midpoint`]) at 0.1 s gives `beta` within the
-    /// errors of the default scheme at 0.01 s, where the default scheme at 0.05 s (this
-    /// study's step before) was 9-14 % high at 0.01-0.3 um, in about the same run time.
+    /// errors of the default scheme at 0.01 s, where the default scheme at longer steps is
+    /// biased high, in about the same run time (docs/validation.md, "The time step").
     fn default() -> Self {
-        let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 1800.0);
+        let mut scene = Scene::new(Geometry::Room { size: [4.0, 3.0, 2.5] });
         scene.flow = Flow::indoor_room();
         scene.brownian = true;
-        scene.scheme = Scheme::Midpoint;
         Self {
             scene,
+            settings: RunSettings { scheme: Scheme::Midpoint, ..RunSettings::new(0.1, 1800.0) },
             diameters: vec![0.01e-6, 0.03e-6, 0.1e-6, 0.3e-6, 1e-6, 3e-6, 10e-6],
             count: 1000,
             target_error: Some(TARGET_ERROR),
@@ -280,16 +284,17 @@ impl RoomStudy {
         allocation::plan(&figures, (tracked, steps), n, (needed, self.max_count.max(n)), (target, TARGET_MARGIN))
     }
 
-    /// `first`, a run of `scene` with the first particles, carried on until its figures reach
+    /// `first`, a run of `scene` with `settings` and the first particles, carried on until its figures reach
     /// `target` or `max_count` particles have run: in up to [`ROUNDS`] rounds, each but the
     /// last to at most [`ROUND_GROWTH`] times the particles run, as the
     /// [`RoomStudy::target_error`] says. The errors of the first particles, which rest on
     /// fewer deposits, are rough, and later rounds stop where every figure is resolved rather
     /// than at what those said. The cuts are planned once, from the first particles, which
-    /// all ran at the full sampling, and set in `scene`.
+    /// all ran at the full sampling, and set in `settings`.
     fn resolve(
         &self,
-        scene: &mut Scene,
+        scene: &Scene,
+        settings: &mut RunSettings,
         injection: &Injection,
         model: &LaiNazaroff,
         target: f64,
@@ -307,7 +312,7 @@ impl RoomStudy {
             }
             if round == 0 {
                 let (planned, sampling) = self.plan(&result, model, needed, target);
-                if let Some(excursions) = scene.excursions.as_mut() {
+                if let Some(excursions) = settings.excursions.as_mut() {
                     excursions.class_sampling = sampling;
                 }
                 needed = planned;
@@ -315,7 +320,7 @@ impl RoomStudy {
                 needed = topped_up(have, needed);
             }
             have = if round + 1 < ROUNDS { needed.min(have * ROUND_GROWTH) } else { needed };
-            result = run_more(scene, &Injection { count: have, ..*injection }, result)?;
+            result = run_more(scene, settings, &Injection { count: have, ..*injection }, result)?;
         }
         Ok(result)
     }
@@ -367,8 +372,9 @@ impl RoomStudy {
         for (i, &d) in self.diameters.iter().enumerate() {
             let injection = Injection::new(self.count, SizeDistribution::Monodisperse { diameter: d }, self.density);
             let mut plain = self.scene.clone();
-            plain.average_from = self.transient * plain.steps() as f64 * plain.dt;
             plain.air_exchange += self.filtration.removal(d);
+            let mut plain_settings = self.settings.clone();
+            plain_settings.average_from = self.transient * plain_settings.steps() as f64 * plain_settings.dt;
             let model = LaiNazaroff::new(d, self.density, &self.scene.air, g, u_star);
             // Excursions down to 0.05 wall units (75 um at u* = 1 cm/s), inside the Brownian
             // sublayer of every size, calibrated by a pilot of a quarter of the first
@@ -379,40 +385,49 @@ impl RoomStudy {
             let most = ROOM_LONGEST_EXCURSION * f64::from(1u32 << LONGEST_DOUBLINGS);
             let mut longest = ROOM_LONGEST_EXCURSION;
             let mut calibration_seconds = 0.0;
-            let (scene, result) = loop {
+            let (settings, result) = loop {
                 // A wall function counts expected deposits itself: no excursions.
-                let (mut scene, duration) = if self.excursions && self.scene.wall_function.is_none() {
+                let (mut settings, duration) = if self.excursions && self.scene.wall_function.is_none() {
                     let pilot = (self.count / PILOT.0).max(1);
-                    let (scene, duration, seconds) =
-                        with_excursions(plain.clone(), &injection, pilot, 0.05, (longest, most), 16, None, 1)
-                            .map_err(for_diameters)?;
+                    let (settings, duration, seconds) = with_excursions(
+                        &plain,
+                        plain_settings.clone(),
+                        &injection,
+                        pilot,
+                        0.05,
+                        (longest, most),
+                        16,
+                        None,
+                        1,
+                    )
+                    .map_err(for_diameters)?;
                     calibration_seconds += seconds;
-                    (scene, duration)
+                    (settings, duration)
                 } else {
-                    (plain.clone(), most)
+                    (plain_settings.clone(), most)
                 };
                 let start = std::time::Instant::now();
-                let mut result = run(&scene, &injection).map_err(for_diameters)?;
+                let mut result = run(&plain, &settings, &injection).map_err(for_diameters)?;
                 if let Some(target) = self.target_error {
-                    result = self.resolve(&mut scene, &injection, &model, target, result)?;
+                    result = self.resolve(&plain, &mut settings, &injection, &model, target, result)?;
                 }
                 match lengthened(duration, result.truncated_share(), most) {
-                    Some(longer) if scene.excursions.is_some() => {
+                    Some(longer) if settings.excursions.is_some() => {
                         calibration_seconds += start.elapsed().as_secs_f64();
                         longest = longer;
                     }
-                    _ => break (scene, result),
+                    _ => break (settings, result),
                 }
             };
             // Every particle gone before the window opened (they settle within it): the size
             // is run again, plainly, averaged over the release from its start.
             let exposure: f64 = result.particles.iter().map(|p| p.exposure).sum();
-            let (scene, result) = if exposure > 0.0 {
-                (scene, result)
+            let (settings, result) = if exposure > 0.0 {
+                (settings, result)
             } else {
-                let mut from_release = plain.clone();
+                let mut from_release = plain_settings.clone();
                 from_release.average_from = 0.0;
-                let result = run(&from_release, &injection).map_err(for_diameters)?;
+                let result = run(&plain, &from_release, &injection).map_err(for_diameters)?;
                 (from_release, result)
             };
             let v = |o| result.deposition_velocity(&result.walls_facing(o));
@@ -448,7 +463,7 @@ impl RoomStudy {
                 late(&result.walls_facing(Orientation::Ceiling)),
                 late(&result.walls_facing(Orientation::Wall)),
                 late(&furnished),
-                scene.exchange_rate(),
+                plain.exchange_rate(),
             ];
             let spread = SteadyState::from_release(&result, lambda, floor_volume);
             // A source elsewhere than over the whole room: its own release, tracked plainly.
@@ -462,9 +477,9 @@ impl RoomStudy {
             };
             let steady = match at_source {
                 Some(placed) => {
-                    let mut from_source = plain.clone();
+                    let mut from_source = plain_settings.clone();
                     from_source.average_from = 0.0;
-                    let run = run(&from_source, &placed).map_err(for_diameters)?;
+                    let run = run(&plain, &from_source, &placed).map_err(for_diameters)?;
                     SteadyState::from_release(&run, lambda, floor_volume)
                 }
                 None => spread,
@@ -486,9 +501,9 @@ impl RoomStudy {
                 }
             });
             let decay = result.decay_curve(DECAY_INTERVALS);
-            let decay_fit = result.decay_fit(&decay, scene.exchange_rate());
+            let decay_fit = result.decay_fit(&decay, plain.exchange_rate());
             let release_fit = match decay_fit {
-                None => result.release_decay(DECAY_INTERVALS, scene.exchange_rate()).map(|(_, f)| f),
+                None => result.release_decay(DECAY_INTERVALS, plain.exchange_rate()).map(|(_, f)| f),
                 Some(_) => None,
             };
             points.push(RoomPoint {
@@ -504,9 +519,9 @@ impl RoomStudy {
                 model_beta: model.loss_rate(size),
                 particle_steps: result.particle_steps(),
                 particles: result.records.len(),
-                excursions: scene.excursions.as_ref().map(|_| result.truncated_share()),
-                longest_excursion: scene.excursions.as_ref().map(|e| e.max_duration),
-                class_sampling: scene.excursions.as_ref().map(|e| e.class_sampling),
+                excursions: settings.excursions.as_ref().map(|_| result.truncated_share()),
+                longest_excursion: settings.excursions.as_ref().map(|e| e.max_duration),
+                class_sampling: settings.excursions.as_ref().map(|e| e.class_sampling),
                 calibration_seconds,
                 tally: total(&result.tallies),
                 tallies: result.tallies.clone(),
@@ -516,7 +531,7 @@ impl RoomStudy {
                     .map(|w| match w.furnishing {
                         None => result.deposition_map(w.id, size, MAP_BINS),
                         Some(k) => {
-                            let b = &scene.furnishings[k];
+                            let b = &plain.furnishings[k];
                             result.deposition_map_within(w.id, b.low, b.high, MAP_BINS)
                         }
                     })
@@ -527,12 +542,12 @@ impl RoomStudy {
                     .map(|w| match w.furnishing {
                         None => result.resolved_flux_map(w.id, [0.0; 3], size),
                         Some(k) => {
-                            let b = &scene.furnishings[k];
+                            let b = &plain.furnishings[k];
                             result.resolved_flux_map(w.id, b.low, b.high)
                         }
                     })
                     .collect(),
-                furnishings: scene
+                furnishings: plain
                     .furnishings
                     .iter()
                     .enumerate()
@@ -565,7 +580,7 @@ impl RoomStudy {
                 decay_fit,
                 release_fit,
                 balance,
-                averaged_from: scene.average_from,
+                averaged_from: settings.average_from,
                 deposited_by: [0.5, 0.9].map(|share| deposited_by(&result.records, share)),
                 steady,
                 steady_indoor_outdoor,

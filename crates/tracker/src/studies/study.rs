@@ -25,11 +25,12 @@ use crate::estimation::run::Estimate;
 use crate::model::error::SceneError;
 use crate::model::excursions::{Excursions, Sweeps};
 use crate::model::scene::{Injection, Scene};
+use crate::model::settings::RunSettings;
 use crate::tracking::WallTally;
 
 /// Excursions per inward crossing in the studies: more than one, as each crossing's
-/// excursions cost less than the plain tracking that found it (room, 0.1 um: efficiency
-/// 21 with one, 32 with three).
+/// excursions cost less than the plain tracking that found it (efficiencies in
+/// docs/performance-log.md).
 pub(crate) const STUDY_SAMPLING: f64 = 3.0;
 
 /// The studies' splitting calibration: run particles per pilot particle, and rounds.
@@ -67,9 +68,8 @@ pub const TARGET_MARGIN: f64 = 1.15;
 /// that duration, when its pilot or a size's whole run gives up more ([`lengthened`]; the
 /// pilot runs again, the size starts afresh): half of [`TARGET_ERROR`], so that what giving
 /// them up may miss (at most that share, had every branch given up deposited) stays within
-/// half a resolved figure's error. The default room gives up 0.3-1.3 % at 0.1-1 um; the
-/// measured rooms of Thatcher et al. (2002), at their lower friction velocities, up to 17 %
-/// at 0.5 um.
+/// half a resolved figure's error. Rooms of lower friction velocity give up more (figures in
+/// docs/performance-log.md).
 pub const LONGEST_SHARE: f64 = 0.025;
 
 /// The most times a room study doubles its excursions' longest duration (from
@@ -90,7 +90,7 @@ pub fn lengthened(duration: f64, truncated: f64, most: f64) -> Option<f64> {
     (truncated > LONGEST_SHARE && 2.0 * duration <= most * (1.0 + 1e-9)).then_some(2.0 * duration)
 }
 
-/// `scene` with the studies' excursions, calibrated by a pilot of `pilot` particles of
+/// `settings` with the studies' excursions for `scene`, calibrated by a pilot of `pilot` particles of
 /// `injection` with factors up to `max`; `inner` and the durations in wall units; `sweeps`
 /// and `coarse_factor` as [`Excursions`] has them. The excursions are given up after
 /// `first` and, while the pilot gives up more than [`LONGEST_SHARE`] of the weight, twice as
@@ -98,7 +98,8 @@ pub fn lengthened(duration: f64, truncated: f64, most: f64) -> Option<f64> {
 /// first). Also the duration taken, and the pilots' wall-clock time, s.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn with_excursions(
-    mut scene: Scene,
+    scene: &Scene,
+    mut settings: RunSettings,
     injection: &Injection,
     pilot: usize,
     inner: f64,
@@ -106,7 +107,7 @@ pub(crate) fn with_excursions(
     max: u32,
     sweeps: Option<Sweeps>,
     coarse_factor: u32,
-) -> Result<(Scene, f64, f64), SceneError> {
+) -> Result<(RunSettings, f64, f64), SceneError> {
     let start = std::time::Instant::now();
     let u_star = scene.flow.friction_velocity().unwrap_or(0.0);
     let mut duration = first;
@@ -121,15 +122,16 @@ pub(crate) fn with_excursions(
                 coarse_factor,
                 ..Excursions::in_wall_units(u_star, nu, inner, sampling, duration)
             };
-            let (calibrated, truncated) = excursions.calibrated(&scene, injection, pilot.max(1), rounds, max)?;
-            scene.excursions = Some(calibrated);
+            let (calibrated, truncated) =
+                excursions.calibrated(scene, &settings, injection, pilot.max(1), rounds, max)?;
+            settings.excursions = Some(calibrated);
             match lengthened(duration, truncated, most) {
                 Some(longer) => duration = longer,
                 None => break,
             }
         }
     }
-    Ok((scene, duration, start.elapsed().as_secs_f64()))
+    Ok((settings, duration, start.elapsed().as_secs_f64()))
 }
 
 /// The particles an estimate from `n` of them needs for a relative standard error of
@@ -148,10 +150,9 @@ pub fn particles_for(e: &Estimate, n: usize, target: f64) -> usize {
 /// `needed` that [`particles_for`] asks of them: [`TARGET_MARGIN`] on the particles it adds,
 /// not on all of them. The margin is for the spread of errors not yet seen: from the first
 /// particles, whose errors rest on few deposits, on all; once most of the particles have run,
-/// the pooled figures' spread is what they showed, and only the added particles' is unknown.
-/// In the furnished, ventilated room at 0.1 um, whose worst figure was 5.6 % after 4000
-/// particles, the margin on all ran 5772 to 4.6 %, on the added ones 5173 to 4.9 %. At
-/// least one more.
+/// the pooled figures' spread is what they showed, and only the added particles' is unknown
+/// (docs/performance-log.md, "The pilot a quarter of the first particles, and a top-up's
+/// margin on what it adds"). At least one more.
 #[must_use]
 pub fn topped_up(have: usize, needed: usize) -> usize {
     let bare = needed as f64 / TARGET_MARGIN;
@@ -222,16 +223,18 @@ mod tests {
     /// after 16000, once. Without `lengthen` (the channel's) the duration stays.
     #[test]
     fn a_room_s_excursions_are_followed_longer_while_the_pilot_gives_up_too_much() {
-        let mut scene = RoomStudy::default().scene;
-        scene.duration = 300.0;
-        scene.average_from = 30.0;
+        let RoomStudy { scene, mut settings, .. } = RoomStudy::default();
+        settings.duration = 300.0;
+        settings.average_from = 30.0;
         let injection = Injection::new(100, SizeDistribution::Monodisperse { diameter: 0.3e-6 }, 1000.0);
         let unit = scene.air.kinematic_viscosity() / 1e-4; // nu / u*^2, s
         let longest = |base: f64, lengthen: bool| {
             let most = if lengthen { 8.0 * base } else { base };
-            let (scene, ..) = with_excursions(scene.clone(), &injection, 100, 0.05, (base, most), 16, None, 1).unwrap();
-            let max_duration = scene.excursions.as_ref().unwrap().max_duration;
-            let share = run(&Scene { seed: 7, ..scene.clone() }, &injection).unwrap().truncated_share();
+            let (settings, ..) =
+                with_excursions(&scene, settings.clone(), &injection, 100, 0.05, (base, most), 16, None, 1).unwrap();
+            let max_duration = settings.excursions.as_ref().unwrap().max_duration;
+            let share =
+                run(&scene, &RunSettings { seed: 7, ..settings.clone() }, &injection).unwrap().truncated_share();
             (max_duration / unit, share)
         };
         let (short, share) = longest(20.0, true);

@@ -117,7 +117,8 @@ pub(super) fn wrap(mut x: DVec3, p: &Prepared<'_>) -> DVec3 {
 /// `x.rem_euclid(length)`, bit for bit, without the division where a step has left
 /// `[0, length)` by less than one length (every step but the first after an extreme state):
 /// `x - length` is exact there (Sterbenz), as `fmod` is, and `x + length` is what
-/// `rem_euclid` computes for `-length <= x < 0`. `fmod` took 4 % of a channel study's time.
+/// `rem_euclid` computes for `-length <= x < 0`. `fmod` took a noticeable share of a channel
+/// study's time (docs/performance-log.md).
 #[inline(always)]
 fn wrap_axis(x: f64, length: f64) -> f64 {
     if (0.0..length).contains(&x) {

@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: a particle tracked with its near-wall excursions.
+//!
 //! Plain tracking with near-wall excursions ([`Excursions`]): each injected particle is
 //! tracked as alone, and each of its entries into the excursions' region (an inward crossing
 //! of the near-wall layer, or in a channel with [`Excursions::sweeps`] a strong sweep) starts
@@ -339,9 +341,9 @@ pub(crate) fn run_with_excursions<
     id: u64,
     tally: &mut [WallTally],
 ) -> (Record, ParticleTally) {
-    let dt = p.scene.dt;
+    let dt = p.settings.dt;
     let window = p.window;
-    let mut sampler = particle_rng(p.scene.seed ^ SAMPLER_SALT, id);
+    let mut sampler = particle_rng(p.settings.seed ^ SAMPLER_SALT, id);
     let mut copies = 0u64;
     let mut stats = ParticleTally::default();
     // Excursions' own wall contacts are not the run's: they go to a scratch tally.
@@ -385,7 +387,7 @@ pub(crate) fn run_with_excursions<
                     // with the probability of its fraction.
                     let count = sampling.floor() as u64 + u64::from(sampler.random::<f64>() < sampling.fract());
                     for _ in 0..count {
-                        let streams = (p.scene.seed, id, &mut copies);
+                        let streams = (p.settings.seed, id, &mut copies);
                         excursion::<BROWN, TURB, FINITE_RE, EULER, LIFT>(
                             p,
                             (excursions, sampling, class),
@@ -449,7 +451,7 @@ fn excursion<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, const E
     stats.excursions += 1;
     let (_, per_step) = normals_per_step(TURB, BROWN, EULER);
     // The branches' clock, in the scene's steps: a coarse step counts `factor` of them.
-    let last = next + (excursions.max_duration / p.scene.dt).ceil() as usize;
+    let last = next + (excursions.max_duration / p.settings.dt).ceil() as usize;
     let mut stack = Vec::new();
     *copies += 1;
     let flyer = start.with_streams(Normals::from_rng(&mut branch_rng(seed, id, *copies)), next, per_step);
@@ -615,15 +617,15 @@ mod tests {
     /// `MAX_STEP_GRADIENT` (0.05) at 2 and above it at 4.
     #[test]
     fn coarse_steps_keep_clear_of_the_wall_and_of_the_buffer_layer() {
-        let mut scene = crate::studies::channel::ChannelStudy::default().scene;
+        let crate::studies::channel::ChannelStudy { scene, mut settings, .. } = Default::default();
         let nu = scene.air.kinematic_viscosity();
         let u_star = 0.3;
         let unit = nu / u_star;
-        scene.excursions =
+        settings.excursions =
             Some(Excursions { coarse_factor: 8, ..Excursions::in_wall_units(u_star, nu, 0.2, 3.0, 1e5) });
         let d = crate::physics::correlations::diameter_for_tau_plus(0.3, 1000.0, &scene.air, u_star).unwrap();
         let injection = crate::Injection::new(1, crate::SizeDistribution::Monodisperse { diameter: d }, 1000.0);
-        let p = Prepared::new(&scene, &injection).unwrap();
+        let p = Prepared::new(&scene, &settings, &injection).unwrap();
         let c = p.coarse.as_deref().expect("coarse steps prepared");
         assert!((c.dt / p.dt - 8.0).abs() < 1e-12);
         let coarse = Coarse { p: c, body: Body::new(c, d), factor: 8 };
@@ -634,7 +636,7 @@ mod tests {
             flyer.x.z = (gap_plus + radius_plus) * unit;
             flyer.v = DVec3::new(0.0, 0.0, v_plus * u_star);
             flyer.zeta = [1.0; 3];
-            coarse.allows(flyer, free_flight_gap(&p, p.scene.excursions.as_ref().unwrap(), flyer))
+            coarse.allows(flyer, free_flight_gap(&p, p.settings.excursions.as_ref().unwrap(), flyer))
         };
         assert!(allows(&mut flyer, 0.5, 0.0), "0.5 wall units off, at rest");
         assert!(allows(&mut flyer, 2.0, 0.0), "2 wall units off, at rest");
@@ -658,17 +660,20 @@ mod tests {
         use crate::model::furnishing::Clearance;
         use rand::RngExt;
 
-        let mut scene = crate::Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 10.0);
+        let mut scene = crate::Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] });
         scene.flow = crate::Flow::indoor_room();
         scene.brownian = true;
-        scene.scheme = crate::Scheme::Midpoint;
         scene.furnishings =
             vec![Furnishing::new([1.0, 1.0, 0.7], [2.2, 1.8, 0.75]), Furnishing::new([3.5, 0.2, 0.3], [3.9, 2.8, 2.0])];
         let nu = scene.air.kinematic_viscosity();
-        scene.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0));
+        let settings = crate::RunSettings {
+            scheme: crate::Scheme::Midpoint,
+            excursions: Some(Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0)),
+            ..crate::RunSettings::new(0.1, 10.0)
+        };
         let injection = crate::Injection::new(1, crate::SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-        let p = Prepared::new(&scene, &injection).unwrap();
-        let excursions = scene.excursions.as_ref().unwrap();
+        let p = Prepared::new(&scene, &settings, &injection).unwrap();
+        let excursions = settings.excursions.as_ref().unwrap();
         let (layer, reads) = (excursions.layer, p.field.turbulence_flat_from);
         let mut flyer = Flyer::inject(&p, 0, true, true);
         let r = flyer.body.contact;
@@ -724,18 +729,21 @@ mod tests {
     /// distance reaches across the layer.
     #[test]
     fn surely_inside_agrees_with_the_zone() {
-        let mut scene = crate::Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 10.0);
+        let mut scene = crate::Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] });
         scene.flow = crate::Flow::indoor_room();
         scene.furnishings =
             vec![Furnishing::new([1.0, 1.0, 0.7], [2.2, 1.8, 0.75]), Furnishing::new([3.5, 0.2, 0.3], [3.9, 2.8, 2.0])];
         let nu = scene.air.kinematic_viscosity();
-        scene.excursions = Some(Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0));
-        let excursions = scene.excursions.clone().unwrap();
+        let settings = crate::RunSettings {
+            excursions: Some(Excursions::in_wall_units(0.01, nu, 0.05, 3.0, 16_000.0)),
+            ..crate::RunSettings::new(0.1, 10.0)
+        };
+        let excursions = settings.excursions.clone().unwrap();
         let layer = excursions.layer;
         let mut rng = particle_rng(5, 0);
         for (diameter, speed) in [(1e-6, 0.05), (50e-6, 5.0)] {
             let injection = crate::Injection::new(1, crate::SizeDistribution::Monodisperse { diameter }, 1000.0);
-            let p = Prepared::new(&scene, &injection).unwrap();
+            let p = Prepared::new(&scene, &settings, &injection).unwrap();
             let mut flyer = Flyer::inject(&p, 0, true, false);
             let r = flyer.body.contact;
             let (mut sure, mut unsure) = (0, 0);

@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: the four-lane step and its AVX2 form, tested against one particle alone.
+//!
 //! Turbulent scenes, and scenes of constant forcing, [`WIDTH`] particles side by side: the
 //! same steps, random numbers and contacts as one particle alone, with the lanes' look-ups
 //! overlapped and their arithmetic vectorised (see [`run_lanes`]).
@@ -44,7 +46,7 @@ struct Lane {
 /// alone, or a laminar profile, there are no look-ups to overlap and no free flight, and one
 /// particle at a time is faster: `track` does not send such scenes here.) A step that ends
 /// for every lane in the air, without a contact or a wrap, is taken for all lanes at once
-/// (13 % fewer instructions in the turbulent bench scene, about 3 % less time). Each
+/// (fewer instructions and less time; docs/performance-log.md). Each
 /// particle takes exactly the steps, random numbers and contacts it takes alone (a lane whose
 /// particle is done takes the next one), so the records are identical to [`run_particle`]'s
 /// (tested); only the order in which contacts add their energies to the tallies differs.
@@ -71,7 +73,7 @@ fn lanes<const BROWN: bool, const TURB: bool, const AVX2: bool>(
     if p.steps == 0 {
         return ids.map(|id| run_particle::<BROWN, TURB, false, false, false>(p, id as u64, tally)).collect();
     }
-    let dt = p.scene.dt;
+    let dt = p.settings.dt;
     let field = &p.field;
     let first = ids.start;
     let mut records: Vec<Option<Record>> = vec![None; ids.len()];
@@ -580,6 +582,7 @@ mod tests {
     use crate::model::flow::Flow;
     use crate::model::geometry::Geometry;
     use crate::model::scene::{Injection, Scene, SizeDistribution};
+    use crate::model::settings::RunSettings;
     use crate::model::walls::WallBehaviour;
     use crate::physics::noise::particle_rng;
     use depo_wall_model::WallLaw;
@@ -587,8 +590,11 @@ mod tests {
 
     /// `run_lanes` must give each particle exactly what `run_particle` gives it alone: same
     /// records bit for bit, same wall contacts.
-    fn lanes_match_one_at_a_time<const BROWN: bool, const TURB: bool>(scene: &Scene, injection: &Injection) -> usize {
-        let p = Prepared::new(scene, injection).unwrap();
+    fn lanes_match_one_at_a_time<const BROWN: bool, const TURB: bool>(
+        (scene, settings): (&Scene, &RunSettings),
+        injection: &Injection,
+    ) -> usize {
+        let p = Prepared::new(scene, settings, injection).unwrap();
         let walls = p.walls.len();
         let (mut lane_tally, mut alone_tally) = (vec![WallTally::default(); walls], vec![WallTally::default(); walls]);
         let lanes = run_lanes::<BROWN, TURB>(&p, 0..injection.count, &mut lane_tally);
@@ -622,21 +628,23 @@ mod tests {
         // them. 37 particles, so that the lanes refill unevenly (as particles deposit) and the
         // last ones run part-empty.
         let law = WallLaw::preset("dunn1995-stainless").unwrap();
-        let mut room = Scene::new(Geometry::Room { size: [0.05, 0.04, 0.03] }, 0.01, 10.0)
-            .with_walls(WallBehaviour::Law { law, size: None });
+        let mut room =
+            Scene::new(Geometry::Room { size: [0.05, 0.04, 0.03] }).with_walls(WallBehaviour::Law { law, size: None });
+        let room_settings = RunSettings::new(0.01, 10.0);
         room.flow = Flow::TurbulentRoom { friction_velocity: 0.05, core_rms: 0.1, core_time: 0.5, blend_length: 0.01 };
         room.brownian = true;
         let settling = Injection::new(37, SizeDistribution::Monodisperse { diameter: 5e-6 }, 1000.0);
-        lanes_match_one_at_a_time::<true, true>(&room, &settling);
-        lanes_match_one_at_a_time::<false, true>(&room, &settling);
+        lanes_match_one_at_a_time::<true, true>((&room, &room_settings), &settling);
+        lanes_match_one_at_a_time::<false, true>((&room, &room_settings), &settling);
 
-        let mut channel = Scene::new(Geometry::Channel { length: 0.05, width: 0.02, height: 0.01 }, 1e-4, 0.3);
+        let mut channel = Scene::new(Geometry::Channel { length: 0.05, width: 0.02, height: 0.01 });
+        let channel_settings = RunSettings::new(1e-4, 0.3);
         channel.flow = Flow::TurbulentChannel { friction_velocity: 0.3 };
         channel.brownian = true;
         channel.gravity = [0.0; 3];
         let particles = Injection::new(37, SizeDistribution::Monodisperse { diameter: 20e-6 }, 1000.0);
-        assert!(lanes_match_one_at_a_time::<true, true>(&channel, &particles) > 0);
-        assert!(lanes_match_one_at_a_time::<false, true>(&channel, &particles) > 0);
+        assert!(lanes_match_one_at_a_time::<true, true>((&channel, &channel_settings), &particles) > 0);
+        assert!(lanes_match_one_at_a_time::<false, true>((&channel, &channel_settings), &particles) > 0);
     }
 
     #[test]
@@ -736,13 +744,13 @@ mod tests {
         // the floor within the run, those injected high do not); and a uniform flow through a
         // channel, periodic along and across (so that particles wrap), whose floor absorbs them.
         let law = WallLaw::preset("dunn1995-stainless").unwrap();
-        let room = Scene::new(Geometry::Room { size: [0.05, 0.04, 0.03] }, 0.01, 0.8)
-            .with_walls(WallBehaviour::Law { law, size: None });
+        let room =
+            Scene::new(Geometry::Room { size: [0.05, 0.04, 0.03] }).with_walls(WallBehaviour::Law { law, size: None });
         let settling = Injection::new(37, SizeDistribution::Monodisperse { diameter: 30e-6 }, 1000.0);
-        assert!(lanes_match_one_at_a_time::<false, false>(&room, &settling) > 0);
+        assert!(lanes_match_one_at_a_time::<false, false>((&room, &RunSettings::new(0.01, 0.8)), &settling) > 0);
 
-        let mut channel = Scene::new(Geometry::Channel { length: 0.05, width: 0.02, height: 0.01 }, 1e-3, 0.3);
+        let mut channel = Scene::new(Geometry::Channel { length: 0.05, width: 0.02, height: 0.01 });
         channel.flow = Flow::Uniform { velocity: [0.5, -0.2, 0.0] };
-        assert!(lanes_match_one_at_a_time::<false, false>(&channel, &settling) > 0);
+        assert!(lanes_match_one_at_a_time::<false, false>((&channel, &RunSettings::new(1e-3, 0.3)), &settling) > 0);
     }
 }

@@ -1,3 +1,5 @@
+//! One subject, hence one file over 700 lines: one particle's loop, its step and its injection (contacts, fluid and lanes are modules of their own).
+//!
 //! One particle through a whole run: the step (drag relaxation, gravity, Brownian motion,
 //! turbulent dispersion), the wall contacts within a step, and the particle's fate.
 //!
@@ -84,7 +86,8 @@ use crate::model::furnishing::{Clearance, Furnishing};
 use crate::model::geometry::Wall;
 use crate::model::openings::{Opening, OpeningKind, CELLS_ALONG_LONGEST};
 use crate::model::potential_flow::{FlowCell, PotentialFlow};
-use crate::model::scene::{Drag, Injection, NearWall, Scene, Scheme, SizeDistribution};
+use crate::model::scene::{Drag, Injection, NearWall, Scene, SizeDistribution};
+use crate::model::settings::{RunSettings, Scheme};
 use crate::model::walls::WallBehaviour;
 use crate::model::walls::WallFunction;
 use crate::physics::intermittency::Intermittent;
@@ -111,7 +114,7 @@ pub(crate) use wall_function::track_wall_function;
 /// well mixed near steep rms gradients (figures in docs/validation.md, "The time step").
 pub const MAX_STEP_GRADIENT: f64 = 0.05;
 
-/// [`MAX_STEP_GRADIENT`] for [`Scheme::Midpoint`](crate::model::scene::Scheme::Midpoint),
+/// [`MAX_STEP_GRADIENT`] for [`Scheme::Midpoint`](crate::model::settings::Scheme::Midpoint),
 /// which reads the profiles half a step on (second order) and keeps tracers well mixed up to
 /// twice the default's limit (docs/validation.md, "The time step").
 pub const MAX_STEP_GRADIENT_MIDPOINT: f64 = 0.1;
@@ -202,6 +205,8 @@ impl std::ops::AddAssign for WallTally {
 /// The scene prepared for tracking: tabulated flow, walls, per-run constants.
 pub(crate) struct Prepared<'a> {
     pub scene: &'a Scene,
+    /// How the run is estimated: its step, scheme, seed, window, excursions.
+    pub settings: &'a RunSettings,
     pub injection: &'a Injection,
     pub field: FlowField,
     /// The domain's walls (the planes the contact search checks one by one).
@@ -271,11 +276,11 @@ impl<'a> Prepared<'a> {
     /// # Errors
     ///
     /// Where the mean flow between the openings cannot be solved ([`PotentialFlow::new`]).
-    pub fn new(scene: &'a Scene, injection: &'a Injection) -> Result<Self, SceneError> {
-        let mut prepared = Self::stepping(scene, injection, scene.dt)?;
-        let factor = scene.excursions.as_ref().map_or(1, |e| e.coarse_factor);
+    pub fn new(scene: &'a Scene, settings: &'a RunSettings, injection: &'a Injection) -> Result<Self, SceneError> {
+        let mut prepared = Self::stepping(scene, settings, injection, settings.dt)?;
+        let factor = settings.excursions.as_ref().map_or(1, |e| e.coarse_factor);
         if factor > 1 && prepared.boxes.is_empty() && prepared.mean_flow.is_none() {
-            let mut coarse = Self::stepping(scene, injection, scene.dt * f64::from(factor))?;
+            let mut coarse = Self::stepping(scene, settings, injection, settings.dt * f64::from(factor))?;
             // Second order in `dt |d sigma/dy|`, whatever the scene's scheme.
             coarse.midpoint = coarse.field.turbulence.is_some();
             prepared.coarse = Some(Box::new(coarse));
@@ -284,7 +289,12 @@ impl<'a> Prepared<'a> {
     }
 
     /// The scene prepared for steps of `dt`.
-    fn stepping(scene: &'a Scene, injection: &'a Injection, dt: f64) -> Result<Self, SceneError> {
+    fn stepping(
+        scene: &'a Scene,
+        settings: &'a RunSettings,
+        injection: &'a Injection,
+        dt: f64,
+    ) -> Result<Self, SceneError> {
         let size = scene.geometry.size();
         let nu = scene.air.kinematic_viscosity();
         let walled = scene.geometry.walled();
@@ -293,7 +303,7 @@ impl<'a> Prepared<'a> {
             field.intermittent =
                 Some(Intermittent::channel(0.5 * size[2], friction_velocity, nu, dt, scene.drift_correction));
         }
-        let midpoint = scene.scheme == Scheme::Midpoint && field.turbulence.is_some();
+        let midpoint = settings.scheme == Scheme::Midpoint && field.turbulence.is_some();
         let mut behaviours = scene.surface_behaviours();
         let wall_function = match (scene.wall_function, scene.flow.friction_velocity()) {
             (Some(wf), Some(u_star)) => {
@@ -315,6 +325,7 @@ impl<'a> Prepared<'a> {
             midpoint && field.profile.is_none() && field.stress_coupling.is_none() && field.intermittent.is_none();
         Ok(Self {
             scene,
+            settings,
             injection,
             field,
             walls: scene.geometry.walls(),
@@ -332,8 +343,8 @@ impl<'a> Prepared<'a> {
             lower: walled.map(|w| if w { 0.0 } else { f64::NEG_INFINITY }),
             upper: std::array::from_fn(|a| if walled[a] { size[a] } else { f64::INFINITY }),
             periodic: walled.contains(&false),
-            steps: scene.steps(),
-            window: [scene.average_from, scene.steps() as f64 * scene.dt],
+            steps: settings.steps(),
+            window: [settings.average_from, settings.steps() as f64 * settings.dt],
             midpoint,
             reuse_scale,
             dt,
@@ -435,7 +446,7 @@ impl Body {
             thermal_variance: kt,
         };
         body.relax_in(aero.relaxation_time, p.dt);
-        if scene.brownian && scene.scheme != Scheme::Euler {
+        if scene.brownian && p.settings.scheme != Scheme::Euler {
             body.contact += CONTINUITY_CORRECTION * body.brownian[0];
         }
         body
@@ -504,7 +515,7 @@ impl Needs {
             brown: scene.brownian,
             turb: p.field.turbulence.is_some(),
             finite_re: scene.drag == Drag::SchillerNaumann,
-            euler: scene.scheme == Scheme::Euler,
+            euler: p.settings.scheme == Scheme::Euler,
             lift: scene.lift && p.field.profile.is_some(),
         }
     }
@@ -595,9 +606,9 @@ fn exhaust_steps(p: &Prepared<'_>, id: u64) -> usize {
     if a <= 0.0 {
         return p.steps;
     }
-    let u: f64 = particle_rng(p.scene.seed ^ EXHAUST_SALT, id).random();
+    let u: f64 = particle_rng(p.settings.seed ^ EXHAUST_SALT, id).random();
     // `1 - u` in (0, 1]: a finite time.
-    let steps = (-(1.0 - u).ln() / (a * p.scene.dt)).ceil();
+    let steps = (-(1.0 - u).ln() / (a * p.settings.dt)).ceil();
     if steps < p.steps as f64 {
         (steps as usize).max(1)
     } else {
@@ -613,7 +624,7 @@ const EXHAUST_SALT: u64 = 0x3c6e_f372_fe94_f82b;
 
 /// Particle `id` at `t = 0`: size, position, velocity (and fluctuation) from its own stream.
 fn inject(p: &Prepared<'_>, id: u64, turb: bool, brown: bool) -> Injected {
-    let mut rng = particle_rng(p.scene.seed, id);
+    let mut rng = particle_rng(p.settings.seed, id);
     let diameter = sample_diameter(p.injection.size, &mut rng);
     let body = Body::new(p, diameter);
     let r = body.radius;
@@ -736,7 +747,7 @@ impl Flyer {
     /// or airborne at the end of the run.
     pub fn finish(&self, p: &Prepared<'_>) -> Record {
         let fate = if self.end < p.steps { Fate::Exhausted } else { Fate::Airborne };
-        self.record(fate, self.end as f64 * p.scene.dt, self.x, self.end as u64)
+        self.record(fate, self.end as f64 * p.settings.dt, self.x, self.end as u64)
     }
 
     /// The record of this particle's end.
@@ -886,7 +897,7 @@ fn run_particle<const BROWN: bool, const TURB: bool, const FINITE_RE: bool, cons
     id: u64,
     tally: &mut [WallTally],
 ) -> Record {
-    let dt = p.scene.dt;
+    let dt = p.settings.dt;
     let mut flyer = Flyer::inject(p, id, TURB, BROWN);
     for n in 0..flyer.end {
         if p.stopped_at(n) {
@@ -978,15 +989,15 @@ mod tests {
         // component's `g sigma` and nothing else. Near the floor and, furnished, a table's top,
         // where the profiles change.
         for furnished in [false, true] {
-            let mut scene = Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] }, 0.1, 10.0);
+            let mut scene = Scene::new(crate::Geometry::Room { size: [4.0, 3.0, 2.5] });
             scene.flow = Flow::indoor_room();
             scene.brownian = true;
-            scene.scheme = Scheme::Midpoint;
+            let settings = RunSettings { scheme: Scheme::Midpoint, ..RunSettings::new(0.1, 10.0) };
             if furnished {
                 scene.furnishings = vec![Furnishing::new([1.0, 1.0, 0.7], [2.0, 1.5, 0.75])];
             }
             let injection = Injection::new(10, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-            let p = Prepared::new(&scene, &injection).unwrap();
+            let p = Prepared::new(&scene, &settings, &injection).unwrap();
             assert!(p.reuse_scale);
             let mut tally = vec![WallTally::default(); p.surfaces.len()];
             let mut flyer = Flyer::inject(&p, 3, true, true);
@@ -1021,11 +1032,11 @@ mod tests {
         }
         // A channel's predictor reads afresh (its mean profile and correlated components):
         // a scale planted in its flyer changes nothing.
-        let mut channel = Scene::new(crate::Geometry::Channel { length: 0.1, width: 0.05, height: 0.02 }, 1e-4, 0.01);
+        let mut channel = Scene::new(crate::Geometry::Channel { length: 0.1, width: 0.05, height: 0.02 });
         channel.flow = Flow::TurbulentChannel { friction_velocity: 0.5 };
-        channel.scheme = Scheme::Midpoint;
+        let settings = RunSettings { scheme: Scheme::Midpoint, ..RunSettings::new(1e-4, 0.01) };
         let injection = Injection::new(10, SizeDistribution::Monodisperse { diameter: 1e-6 }, 1000.0);
-        let p = Prepared::new(&channel, &injection).unwrap();
+        let p = Prepared::new(&channel, &settings, &injection).unwrap();
         assert!(!p.reuse_scale);
         let mut flyer = Flyer::inject(&p, 3, true, false);
         let (x, v) = (flyer.x, flyer.v);

@@ -89,7 +89,7 @@ impl Chances {
                     let correlation = wf.function.correlation_for(orientation);
                     let v_d =
                         deposition_velocity_cached(correlation, aero, &p.scene.air, wf.friction_velocity, orientation);
-                    deposition_probability(v_d, wf.layer, p.scene.dt)
+                    deposition_probability(v_d, wf.layer, p.settings.dt)
                 })
                 .collect();
             self.size = Some((aero.diameter, aero.mass));
@@ -150,13 +150,13 @@ fn run_with_wall_function<
     chances: &mut Chances,
 ) -> (Record, ParticleTally) {
     let wf = p.wall_function.as_ref().expect("a scene with a wall function");
-    let dt = p.scene.dt;
+    let dt = p.settings.dt;
     let window = p.window;
     let mut flyer = Flyer::inject(p, id, TURB, BROWN);
     let aero = flyer.base.aero;
     // Each wall's chance of an arrival over a step in its layer (0 for walls it skips).
     let chance = chances.for_particle(p, &aero);
-    let mut arrivals = particle_rng(p.scene.seed ^ ARRIVAL_SALT, id);
+    let mut arrivals = particle_rng(p.settings.seed ^ ARRIVAL_SALT, id);
     let mut expected = [0.0; 6];
     let mut steps_in_layer = [0u32; 6];
     let mut layer_time = 0.0;
