@@ -15,7 +15,15 @@ of their chances, with its binomial variance), and per wall the mean u*, the cor
 v_d there and the wall cells' concentration over the duct's. The table sets beside them the
 well-mixed prediction for the duct, 1 - exp(-(sum over walls of v_d x perimeter) L / Q) with
 the duct's L = 2 m, perimeter 0.2 m per wall (0.4 m for the two sides) and Q = 0.04 m^3/s,
-and Code_Saturne's sink walls' deposited fraction; written to OUT_DIR/duct_wall_function.csv.
+and Code_Saturne's sink walls' deposited fraction; written to OUT_DIR/duct_wall_function.csv,
+and the figure gains a second panel: the deposited fraction per size beside both predictions
+and the sink walls'.
+
+    duct_report.py --figure DUCT_CSV WALL_FUNCTION_CSV OUT_SVG
+
+draws the figure alone from the two CSV files a report wrote: the ones stored beside this
+script (duct.csv, duct_wall_function.csv) redraw docs/figures/code-saturne-duct.svg without
+running the case.
 """
 import csv
 import math
@@ -64,21 +72,43 @@ def main(sink_run, depo_run, out):
     print("%8s %5s %9s %7s %18s %9s" % ("d (um)", "walls", "where", "count", "fraction", "rebounds"))
     for d, walls, place, count, frac, err, reb in rows:
         print("%8g %5s %9s %7d %9.4f +- %.4f %9d" % (d, walls, place, count, frac, err, reb))
-    svg(rows, os.path.join(out, "duct.svg"))
-    print("wrote", os.path.join(out, "duct.csv"), "and", os.path.join(out, "duct.svg"))
+    print("wrote", os.path.join(out, "duct.csv"))
 
 
-def svg(rows, path):
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def figure(duct_csv, wall_function_csv, path):
+    """The figure, from the report's CSV files (the stored ones redraw it without a run): the
+    fate of the particles with both kinds of wall and, given the wall-function CSV, a second
+    panel with its deposited fraction beside the correlation's predictions."""
+    rows = [(float(r["diameter_um"]), r["walls"], r["where"], int(r["count"]), float(r["fraction"]),
+             float(r["error"]), int(r["rebounds"])) for r in read_csv(duct_csv)]
+    w, h = 760, 360
+    out = fates(rows, w, h)
+    if wall_function_csv is not None:
+        panel_h = 330
+        out += ['<g transform="translate(0 %d)">' % h] + wall_function_panel(read_csv(wall_function_csv), w, panel_h) + ["</g>"]
+        h += panel_h
+    head = '<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (w, h)
+    with open(path, "w") as f:
+        f.write("\n".join([head] + out + ["</svg>"]) + "\n")
+    print("wrote", path)
+
+
+def fates(rows, w, h):
     """Grouped bars: per size, the fraction deposited on each wall and leaving, both wall models."""
     places = WALLS + ["outlet"]
     sizes = sorted({r[0] for r in rows})
     value = {(r[0], r[1], r[2]): (r[4], r[5]) for r in rows}
     colours = {"sink": "#888888", "depo": "#1f77b4"}
-    w, h, left, bottom, top = 760, 360, 60, 60, 30
+    left, bottom, top = 60, 60, 30
     group = (w - left - 20) / (len(sizes) * len(places))
     bar = group / 3
     y = lambda f: h - bottom - f * (h - bottom - top)
-    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (w, h)]
+    out = []
     out.append('<text x="%d" y="18" font-size="13">Duct, 1 m/s: fate of the particles (Code_Saturne sink walls vs depo li1997-sio2)</text>' % left)
     for k in range(6):
         f = k / 5
@@ -99,9 +129,65 @@ def svg(rows, path):
         label = "Code_Saturne deposition (sink)" if walls == "sink" else "depo (rebound or capture)"
         out.append('<rect x="%d" y="%d" width="10" height="10" fill="%s"/><text x="%d" y="%d">%s</text>' % (left + 250 * k, h - 14, colours[walls], left + 250 * k + 14, h - 5, label))
     out.append('<text x="%d" y="%d">bars: 2 standard errors</text>' % (left + 520, h - 5))
-    out.append("</svg>")
-    with open(path, "w") as f:
-        f.write("\n".join(out) + "\n")
+    return out
+
+
+def wall_function_panel(rows, w, h):
+    """Per size, on a log scale: the wall function's deposited fraction (all walls), the
+    fraction the correlation's flux predicts from the wall cells' particles, the well-mixed
+    duct's prediction, and Code_Saturne's sink walls on the same mesh; 2 binomial standard
+    errors on each count."""
+    left, bottom, top = 60, 76, 34
+    lo, hi = 0.01, 1.3
+    y = lambda f: h - bottom - math.log10(max(lo, min(hi, f)) / lo) / math.log10(hi / lo) * (h - bottom - top)
+    group = (w - left - 20) / len(rows)
+    out = ['<text x="%d" y="20" font-size="13">Duct, depo\'s wall function (Lai &amp; Nazaroff 2000) on every wall: deposited fraction</text>' % left]
+    for f in (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1):
+        major = f in (0.01, 0.1, 1)
+        out.append('<line x1="%d" x2="%d" y1="%.1f" y2="%.1f" stroke="%s"/>' % (left, w - 20, y(f), y(f), "#bbb" if major else "#eee"))
+        out.append('<text x="%d" y="%.1f" text-anchor="end">%g</text>' % (left - 4, y(f) + 4, f))
+    out.append('<text x="14" y="%d" transform="rotate(-90 14 %d)">fraction deposited</text>' % (h // 2 + 40, h // 2 + 40))
+    series = [  # (label, colour, marker, fraction column, error column)
+        ("wall function", "#d62728", "dot", "fraction", None),
+        ("predicted from the wall cells", "black", "square", "predicted_wall_cells", "predicted_error"),
+        ("well-mixed prediction", "black", "dash", "predicted_well_mixed", ""),
+        ("Code_Saturne sink walls", "#888888", "diamond", "sink_fraction", None),
+    ]
+    step = group / (len(series) + 1)
+    for i, r in enumerate(rows):
+        n = int(r["injected"])
+        x0 = left + i * group
+        for k, (label, colour, marker, col, err_col) in enumerate(series):
+            f = float(r[col])
+            if err_col is None:
+                e = math.sqrt(max(0.0, f * (1 - f)) / n)
+            else:
+                e = float(r[err_col]) if err_col else 0.0
+            x = x0 + (k + 1) * step
+            if e > 0:
+                out.append('<line x1="%.1f" x2="%.1f" y1="%.1f" y2="%.1f" stroke="%s"/>' % (x, x, y(f + 2 * e), y(f - 2 * e), colour))
+                for yy in (y(f + 2 * e), y(f - 2 * e)):
+                    out.append('<line x1="%.1f" x2="%.1f" y1="%.1f" y2="%.1f" stroke="%s"/>' % (x - 4, x + 4, yy, yy, colour))
+            out.append(mark(marker, x, y(f), colour))
+        out.append('<text x="%.1f" y="%d" text-anchor="middle" font-weight="bold">%g um</text>' % (x0 + group / 2, h - bottom + 16, float(r["diameter_um"])))
+        out.append('<text x="%.1f" y="%d" text-anchor="middle">z = %s, %.2f x well-mixed</text>' % (
+            x0 + group / 2, h - bottom + 30, r["z"].replace("-", "&#8722;"), float(r["fraction"]) / float(r["predicted_well_mixed"])))
+    x = left
+    for label, colour, marker, _, _ in series:
+        out.append(mark(marker, x + 5, h - 9, colour) + '<text x="%d" y="%d">%s</text>' % (x + 14, h - 5, label))
+        x += 14 + 5.6 * len(label) + 20
+    out.append('<text x="%d" y="%d">z: the deposits minus the prediction from the wall cells, in its standard errors; bars: 2 binomial standard errors</text>' % (left, h - 24))
+    return out
+
+
+def mark(marker, x, y, colour):
+    if marker == "dot":
+        return '<circle cx="%.1f" cy="%.1f" r="4" fill="%s"/>' % (x, y, colour)
+    if marker == "square":
+        return '<rect x="%.1f" y="%.1f" width="8" height="8" fill="none" stroke="%s" stroke-width="1.5"/>' % (x - 4, y - 4, colour)
+    if marker == "dash":
+        return '<line x1="%.1f" x2="%.1f" y1="%.1f" y2="%.1f" stroke="%s" stroke-width="2.5"/>' % (x - 6, x + 6, y, y, colour)
+    return '<path d="M %.1f %.1f l 5 5 l -5 5 l -5 -5 z" fill="%s"/>' % (x, y - 5, colour)
 
 
 # The duct: length (m), each wall's share of the perimeter (m), the air's flow rate (m^3/s).
@@ -138,10 +224,14 @@ def wall_function(sink_run, wf_run, out):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 4:
+    if len(sys.argv) == 5 and sys.argv[1] == "--figure":
+        figure(*sys.argv[2:])
+    elif len(sys.argv) == 4:
         main(*sys.argv[1:])
+        figure(os.path.join(sys.argv[3], "duct.csv"), None, os.path.join(sys.argv[3], "duct.svg"))
     elif len(sys.argv) == 5:
         main(sys.argv[1], sys.argv[2], sys.argv[4])
         wall_function(sys.argv[1], sys.argv[3], sys.argv[4])
+        figure(*(os.path.join(sys.argv[4], name) for name in ("duct.csv", "duct_wall_function.csv", "duct.svg")))
     else:
         sys.exit(__doc__)
