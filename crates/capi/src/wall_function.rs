@@ -2,12 +2,10 @@
 //! layer (see the tracker's `wall_function` module, the one source of its formulas).
 
 use depo_tracker::correlations::HUSSEIN_TOP;
-use depo_tracker::wall_function::{deposition_probability, deposition_velocity, Correlation};
+use depo_tracker::wall_function::{deposition_probability, deposition_velocity_cached, Correlation};
 use depo_tracker::{Aerodynamics, Air, Orientation};
 
 use super::{check_disjoint, required, set_last_error, slice, slice_mut, span, Failure, DEPO_ERR_PANIC, DEPO_OK};
-use std::cell::RefCell;
-use std::collections::HashMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Wood (1981): `V+ = 0.057 Sc^(-2/3) + 4.5e-4 tau+^2`, at most 0.13; ducts and channels,
@@ -104,55 +102,21 @@ impl Surface {
         if !(density.is_finite() && density > self.air.density) {
             return bad("density", density, "is not finite and above the gas's");
         }
-        let velocity = || {
-            let aero = Aerodynamics::new(diameter, density, &self.air, self.gravity);
-            deposition_velocity(self.correlation, &aero, &self.air, friction_velocity, self.orientation)
-        };
-        if self.correlation != Correlation::Hussein {
-            return Ok(velocity());
-        }
-        let r_plus = 0.5 * diameter * friction_velocity / self.air.kinematic_viscosity();
-        if r_plus >= HUSSEIN_TOP {
-            return Err(Failure::invalid(format!(
-                "diameter[{i}] = {diameter} at friction_velocity[{i}] = {friction_velocity} is a radius of \
-                 {r_plus} wall units, not below the {HUSSEIN_TOP} of Hussein et al.'s layer"
-            )));
-        }
-        let a = &self.air;
-        let key = [
-            self.orientation as u64,
-            a.temperature.to_bits(),
-            a.pressure.to_bits(),
-            a.density.to_bits(),
-            a.viscosity.to_bits(),
-            self.gravity.to_bits(),
-            friction_velocity.to_bits(),
-            diameter.to_bits(),
-            density.to_bits(),
-        ];
-        Ok(HUSSEIN_CACHE.with(|cache| {
-            let mut cache = cache.borrow_mut();
-            if let Some(&v) = cache.get(&key) {
-                return v;
+        if self.correlation == Correlation::Hussein {
+            let r_plus = 0.5 * diameter * friction_velocity / self.air.kinematic_viscosity();
+            if r_plus >= HUSSEIN_TOP {
+                return Err(Failure::invalid(format!(
+                    "diameter[{i}] = {diameter} at friction_velocity[{i}] = {friction_velocity} is a radius of \
+                     {r_plus} wall units, not below the {HUSSEIN_TOP} of Hussein et al.'s layer"
+                )));
             }
-            if cache.len() >= HUSSEIN_CACHE_SIZE {
-                cache.clear();
-            }
-            let v = velocity();
-            cache.insert(key, v);
-            v
-        }))
+        }
+        let aero = Aerodynamics::new(diameter, density, &self.air, self.gravity);
+        // Hussein et al.'s velocity is an integral across the layer (about 0.8 ms); the
+        // tracker's per-thread cache keeps it, so a host calling per particle per step pays
+        // it once per size, surface and `u*`.
+        Ok(deposition_velocity_cached(self.correlation, &aero, &self.air, friction_velocity, self.orientation))
     }
-}
-
-/// The most inputs whose Hussein et al. velocity a thread keeps (about 100 bytes each); when
-/// full, it starts again empty.
-const HUSSEIN_CACHE_SIZE: usize = 1 << 16;
-
-thread_local! {
-    /// Hussein et al.'s velocities by their inputs' bits (orientation, gas, gravity, friction
-    /// velocity, diameter, density): a pure function, so a hit returns what the integral would.
-    static HUSSEIN_CACHE: RefCell<HashMap<[u64; 9], f64>> = RefCell::new(HashMap::new());
 }
 
 /// The deposition velocity (m/s) that `correlation` gives onto a smooth surface facing
