@@ -193,6 +193,20 @@ fn computed_numbers_in_text_are_rounded() {
     let text = ok_text(&["room", room.to_str().unwrap(), "--no-plot"]);
     assert!(text.contains("Averages from 0.03 s to 0.3 s;"), "{text}");
     assert!(text.contains("above 7 % error"), "{text}");
+    // Rates and shares an input gives, or a flow over a volume, to four figures in headings.
+    let ventilated = dir.join("ventilated.toml");
+    std::fs::write(
+        &ventilated,
+        "[room]\nsize = [2.0, 2.0, 2.0]\n[particles]\ndiameters = [1e-6]\ncount = 10\ntarget_error = 0.0\n\
+         [ventilation]\nair_changes_per_hour = 2.003205128205128\npenetration = 0.123456789\nsupply_share = 0.3\n\
+         recirculation_per_hour = 0.7\nrecirculation_filter = 0.5\n[run]\ndt = 0.1\nduration = 1.0\n",
+    )
+    .unwrap();
+    let text = ok_text(&["room", ventilated.to_str().unwrap(), "--no-plot"]);
+    assert!(text.contains("Ventilated: 2.003 air changes per hour, penetration 0.1235;"), "{text}");
+    assert!(text.contains("Filters: a share 0.3 of the exchange"), "{text}");
+    assert!(text.contains("recirculation 0.7 per hour"), "{text}");
+    assert!(text.contains("less a = 2.003 /h"), "{text}");
     let fit = ok_text(&["fit", "examples/li1997-synthetic.csv", "--free-exponents"]);
     // Fitted exponents to six figures, each with its standard error.
     let pq = fit.lines().find(|l| l.starts_with("p, q")).unwrap();
@@ -724,7 +738,7 @@ fn room_decay_gives_no_z_without_deposits() {
     assert!(fit["z"].is_null(), "{fit}");
     let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
     // The release table's line, before the steady state's.
-    let release = table.split("Under a continuous source").next().unwrap();
+    let release = table.split("Steady state under a continuous source").next().unwrap();
     let line = release.lines().rev().find(|l| l.trim_start().starts_with("1.000")).unwrap();
     let cells: Vec<&str> = line.split_whitespace().collect();
     assert_eq!(&cells[1..5], ["<", cells[2], "[0]", "-"], "{line}");
@@ -1008,6 +1022,68 @@ fn room_reports_furnishings() {
     assert!(ratio.contains("C_in / C_out (depo, +- 1 s.e.)"), "{ratio}");
     assert!(table.contains("Furnishings: 2 boxes") && table.contains("surface-to-volume ratio"), "{table}");
     assert!(table.lines().any(|l| l.contains("shelf")), "{table}");
+}
+
+/// A furnishing no tracked particle reached gives its share of the release as the 95 % upper
+/// bound of the rule of three, 3 / n for n released (as a surface with no event gives its
+/// bound), never `0.0000 +- 0.0000`; one that some reached, its share with its count. The
+/// furnishings' table ends in one legend line.
+#[test]
+fn furnishings_that_collected_nothing_give_a_bound() {
+    let dir = scratch("furnished-empty");
+    let scene = dir.join("room.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [4.0, 3.0, 2.5]\n[particles]\ndiameters = [0.1e-6, 10e-6]\ncount = 100\ntarget_error = 0.0\n\
+         [run]\nduration = 100.0\nexcursions = false\n\
+         [[furnishings]]\nname = \"table\"\nlow = [1.0, 1.0, 0.70]\nhigh = [2.2, 1.8, 0.75]\n\
+         [[furnishings]]\nname = \"shelf\"\nlow = [3.5, 0.2, 0.3]\nhigh = [3.9, 2.8, 2.0]\n",
+    )
+    .unwrap();
+    let path = scene.to_str().unwrap();
+    let json = ok_json(&["room", path, "--format", "json", "--no-plot"]);
+    let text = ok_text(&["room", path, "--no-plot"]);
+    assert!(!text.contains("0.0000 +- 0.0000"), "{text}");
+    let part = text.split("Furnishings:").nth(1).unwrap();
+    let mut empty = 0;
+    let mut some = 0;
+    for size in json["sizes"].as_array().unwrap() {
+        let released = size["release"]["particles"].as_u64().unwrap() as f64;
+        let d = size["diameter_um"].as_f64().unwrap();
+        for f in size["furnishings"].as_array().unwrap() {
+            let name = f["name"].as_str().unwrap();
+            let line = part
+                .lines()
+                .find(|l| {
+                    let c: Vec<&str> = l.split_whitespace().collect();
+                    c.len() > 2 && c[1] == name && c[0].parse::<f64>().is_ok_and(|x| (x - d).abs() < 1e-3)
+                })
+                .unwrap_or_else(|| panic!("{name} at {d} um in {part}"));
+            let count = f["deposited"]["count"].as_u64().unwrap();
+            if count == 0 {
+                empty += 1;
+                let bound = format!("< {:.1e} [0]", 3.0 / released);
+                assert!(line.ends_with(&bound), "{bound} at the end of {line}");
+            } else {
+                some += 1;
+                let share = count as f64 / released;
+                assert!(
+                    line.ends_with(&format!(
+                        "{share:.2e} +- {:.1e} [{count}]",
+                        f["deposited"]["share_error"].as_f64().unwrap()
+                    )),
+                    "{line}"
+                );
+            }
+        }
+    }
+    assert!(empty > 0, "a furnishing with nothing on it: {text}");
+    assert!(some + empty == 4, "{text}");
+    // Heading, header, the four rows, one legend line.
+    let table: Vec<&str> = part.lines().take_while(|l| !l.is_empty()).collect();
+    assert_eq!(table.len(), 7, "{part}");
+    assert!(table[6].ends_with("room --help says more."), "{}", table[6]);
+    assert!(table[0].len() < 110, "a short heading: {}", table[0]);
 }
 
 /// Furnishings in a scene file are checked with the file, line and key.
@@ -1391,6 +1467,33 @@ fn room_reports_a_size_distribution_mass_balance() {
     assert!(lines[3].starts_with("PM2.5,"));
     let table = String::from_utf8(depo(&["room", scene.to_str().unwrap(), "--no-plot"]).stdout).unwrap();
     assert!(table.contains("Size distribution: 8 bins (density 1500, 2500 kg/m^3)"), "{table}");
+    // Every column of the distribution's table with its unit, then one legend line; the
+    // detail is in `room --help`.
+    let part: Vec<&str> = table.split("Size distribution:").nth(1).unwrap().lines().collect();
+    let header: Vec<&str> = part[1].split("  ").map(str::trim).filter(|c| !c.is_empty()).collect();
+    assert_eq!(header.len(), 7, "{}", part[1]);
+    for column in header {
+        assert!(column.ends_with("(ug)") || column.ends_with("(1/h)"), "{column}: in {}", part[1]);
+    }
+    let legend: Vec<&&str> = part[5..].iter().filter(|l| l.ends_with("room --help says more.")).collect();
+    assert_eq!(legend.len(), 1, "{part:?}");
+    assert!(part[5..].iter().all(|l| l.len() < 200), "no paragraph: {part:?}");
+    let help = ok_text(&["room", "--help"]);
+    assert!(help.contains("PM2.5 and") && help.contains("EN 12341:2014"), "{help}");
+    // The steady state's table: a heading line, the header, a row per size, one legend line.
+    let steady: Vec<&str> = table
+        .split("Steady state under a continuous source")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .take_while(|l| !l.is_empty() && !l.starts_with("Size distribution"))
+        .collect();
+    let sizes = report["sizes"].as_array().unwrap().len();
+    assert!(steady[0].len() < 100, "a heading line: {}", steady[0]);
+    assert!(steady[1].contains("time in air (h)") && steady[1].contains("floor (m/s)"), "{}", steady[1]);
+    // Two density headings among the rows.
+    assert_eq!(steady.len(), 2 + 2 + sizes + 1, "{steady:?}");
+    assert!(steady.last().unwrap().ends_with("room --help says more."), "{steady:?}");
     assert_eq!(table.matches("particle density 2500 kg/m^3:").count(), 3, "in the three per-size tables: {table}");
 }
 

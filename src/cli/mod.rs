@@ -71,7 +71,28 @@ enum Command {
     /// tracked particles, which leave the air by their own deposits: where deposition is rare
     /// it resolves beta far less well than the study's excursions. The third table is the steady
     /// state under a continuous source entering where a scene's [source] says (indoor,
-    /// infiltration or a supply opening; examples/room.toml).
+    /// infiltration or a supply opening; examples/room.toml), from its release followed from
+    /// t = 0: the mean time in the air (the steady airborne number per particle emitted an
+    /// hour), the deposition velocities (steady flux over the mean concentration), the share of
+    /// the source ending in each place, in %, "beyond %" the share of the time in the air taken
+    /// from the room's late rates past the run, the concentration in the lowest tenth of the
+    /// height over the mean, and for outdoor air C_in/C_out.
+    ///
+    /// The furnishings' table: per box its deposition velocity onto all its faces, its top,
+    /// its bottom and its sides (the four vertical faces), and the share of the released number
+    /// it collected over the run, [n] the particles; with none, < the 95 % upper bound 3/n of
+    /// the rule of three for n released. Lai & Nazaroff's beta in the first table is the bare
+    /// room's.
+    ///
+    /// The size distribution's table: where its mass went, in ug in the room (modes given as
+    /// concentrations) or as shares of the distribution's whole mass; +- one standard error over
+    /// the runs' randomness; (x) a bound on the error of taking each bin's fate from one run at
+    /// its midpoint, where each share is monotonic in d (?: a bin without neighbours). PM2.5 and
+    /// PM10: mass of particles of aerodynamic diameter (unit density, with slip correction)
+    /// below 2.5 and 10 um, a sharp cut at the 50 % points of the standards' inlets (EN
+    /// 12341:2014, ISO 7708). beta of mass: the loss rate of the airborne mass by deposition
+    /// (not ventilation) while its size distribution is the injected one; over part of the
+    /// mass, a lower bound on the whole's.
     Room(room::RoomArgs),
     /// V+ against tau+ in a turbulent channel, beside Wood (1981).
     ///

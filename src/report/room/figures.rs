@@ -271,15 +271,19 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
             let mut text = format!(
                 "# depo room deposition map: {} {} ({} = {} m), particle diameter {label} um, density {} kg/m^3; \
                  deposits of the tracked particles over the whole run, per cell\n\
-                 # rows: {ra} from {r0} to {r1} m in {n} cells; columns: {ca} from {c0} to {c1} m in {k} cells\n\
+                 # rows: {ra} from {} to {} m in {n} cells; columns: {ca} from {} to {} m in {k} cells\n\
                  # cell size {} m ({ra}) x {} m ({ca})\n",
                 m.kind,
                 m.surface,
                 m.normal.0,
-                m.normal.1,
-                r.density,
-                (r1 - r0) / n as f64,
-                (c1 - c0) / k as f64,
+                shown(m.normal.1),
+                shown(r.density),
+                shown(r0),
+                shown(r1),
+                shown(c0),
+                shown(c1),
+                shown((r1 - r0) / n as f64),
+                shown((c1 - c0) / k as f64),
             );
             for row in &m.cells {
                 let cells: Vec<String> = row.iter().map(u32::to_string).collect();

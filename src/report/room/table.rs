@@ -7,7 +7,7 @@ use depo_tracker::distribution::first_seen;
 use depo_tracker::studies::RoomStudy;
 use depo_tracker::{Flow, Geometry};
 
-use super::distribution::{DistributionReport, MassUnit, Part, PM_DEFINITION};
+use super::distribution::{DistributionReport, MassUnit, Part};
 use super::figures::significant;
 use super::resolution::{particles_to_resolve, two_figures_up, RESOLVED_ERROR};
 use super::rows::{source_label, Share};
@@ -56,9 +56,8 @@ pub fn table(r: &RoomResult) -> String {
         outln!(
             o,
             "Ventilated: {} air changes per hour, penetration {}; C_in/C_out = P a / (a + beta) at steady state.",
-            // To a thousandth: with openings the rate is a flow over a volume.
-            format!("{:.3}", study.scene.exchange_rate() * 3600.0).trim_end_matches('0').trim_end_matches('.'),
-            study.penetration
+            heading_number(study.scene.exchange_rate() * 3600.0),
+            heading_number(study.penetration)
         );
     }
     if !study.scene.openings.is_empty() {
@@ -87,8 +86,8 @@ pub fn table(r: &RoomResult) -> String {
             "Filters: a share {} of the exchange through the supply filter, recirculation {} per hour through its \
              filter (its removal eta_r a_r, added to the exhaust: {} per hour at the sizes run); \
              C_in/C_out = (P (1 - s) a + (1 - eta_s) s a) / (a + eta_r a_r + beta).",
-            f.supply_share,
-            f.recirculation * 3600.0,
+            heading_number(f.supply_share),
+            heading_number(f.recirculation * 3600.0),
             rows.iter()
                 .map(|r| format!("{:.3}", r.filter_removal_per_hour.unwrap_or(0.0)))
                 .collect::<Vec<_>>()
@@ -148,9 +147,6 @@ pub fn table(r: &RoomResult) -> String {
     if walls.iter().any(|w| *w != walls[0]) || !study.scene.openings.is_empty() {
         walls_table(o, rows);
     }
-    if furnished {
-        furnishings_table(o, rows, study);
-    }
     // One legend line: the marks the table uses; room --help and docs/commands.md say more.
     let model = |r: &Row| [r.lai_nazaroff.floor, r.lai_nazaroff.ceiling, r.lai_nazaroff.walls];
     let mut legend = vec!["+- 1 s.e.".to_string(), "[n] deposit events".into(), "< 95 % upper bound".into()];
@@ -190,6 +186,10 @@ pub fn table(r: &RoomResult) -> String {
         shown(study.transient * study.settings.duration),
         shown(study.settings.duration)
     );
+    // Under the first table's legend, which it shares (its cells read alike), with its own.
+    if furnished {
+        furnishings_table(o, rows, study);
+    }
     decay_table(o, rows, study.scene.exchange_rate() * 3600.0, !study.scene.openings.is_empty());
     steady_table(o, rows, study);
     if let Some(d) = &r.distribution {
@@ -221,16 +221,17 @@ fn walls_table(o: &mut String, rows: &[Row]) {
 /// release.
 fn furnishings_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
     let scene = &study.scene;
+    outln!(o, "");
     outln!(
         o,
-        "Furnishings: {} boxes, {:.3} m^3 of air; surface-to-volume ratio {:.3} 1/m (walls and faces over the air's volume); Lai & Nazaroff's beta above is the bare room's.",
+        "Furnishings: {} boxes, {:.3} m^3 of air, surface-to-volume ratio {:.3} 1/m; deposition velocity (m/s) per box:",
         scene.furnishings.len(),
         scene.free_volume(),
         scene.surface_to_volume()
     );
     outln!(
         o,
-        "{:>8}  {:>12} {:>8}  {:>27}  {:>27}  {:>27}  {:>27}  {:>16}",
+        "{:>8}  {:>12} {:>8}  {:>27}  {:>27}  {:>27}  {:>27}  {:>24}",
         "d (um)",
         "furnishing",
         "area m^2",
@@ -244,7 +245,7 @@ fn furnishings_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
         for f in &r.furnishings {
             outln!(
                 o,
-                "{:>8.3}  {:>12} {:>8.3}  {:>27}  {:>27}  {:>27}  {:>27}  {:>16}",
+                "{:>8.3}  {:>12} {:>8.3}  {:>27}  {:>27}  {:>27}  {:>27}  {:>24}",
                 r.diameter_um,
                 f.name,
                 f.area_m2,
@@ -252,10 +253,36 @@ fn furnishings_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
                 f.top.cell(),
                 f.bottom.cell(),
                 f.sides.cell(),
-                format!("{:.4} +- {:.4}", f.deposited.share, f.deposited.share_error)
+                share_cell(&f.deposited, r.release.particles)
             );
         }
     }
+    // One legend line; room --help and docs/commands.md say more.
+    outln!(
+        o,
+        "sides: the four vertical faces; share of release: of the released number, [n] particles, < 95 % bound; \
+         L&N's beta above is the bare room's; room --help says more."
+    );
+}
+
+/// A share of the release in the furnishings' table: `value +- error [count]`, or where no
+/// tracked particle ended there `< bound [0]`, the 95 % upper bound on a binomial share with
+/// no event in `released` trials by the rule of three, 3 / n (Hanley & Lippman-Hand 1983,
+/// JAMA 249:1743), as the surfaces' cells bound a velocity with no event: never a `0 +- 0`
+/// that reads as a measured zero.
+fn share_cell(s: &Share, released: usize) -> String {
+    if s.count == 0 {
+        format!("< {:.1e} [0]", 3.0 / released.max(1) as f64)
+    } else {
+        format!("{:.2e} +- {:.1e} [{}]", s.share, s.share_error, s.count)
+    }
+}
+
+/// A rate per hour or a share an input gives, in a heading: to four significant figures,
+/// trailing zeros dropped (`2.003`, not `2.003205128205128`; `0.7`, not `0.7000000000000001`).
+/// With openings the exchange rate is a flow over a volume, which has no round value.
+fn heading_number(x: f64) -> String {
+    significant(x, 4)
 }
 
 /// Fewer deposits than this within the decay fit's window are flagged in the table: the
@@ -285,7 +312,7 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
          difference, paired over the particles both rest on (- where either has no event or no error). Then where the released \
          particles are at the end, % of the number (for one size also of the mass), and the floor's loading per mg \
          released.",
-        shown(ach)
+        heading_number(ach)
     );
     outln!(
         o,
@@ -369,15 +396,7 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
 /// The steady state under a continuous source, per size (`depo_tracker::steady`).
 fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
     outln!(o, "");
-    outln!(
-        o,
-        "Under a continuous source ({}), at steady state, from its release followed from t = 0: the mean time in the \
-         air (the airborne number per particle emitted an hour), the deposition velocities (flux over the mean \
-         concentration), the share of the source ending in each place, % (and the share of the time in the air from \
-         beyond the run, the room's late rates'), the concentration in the lowest tenth of the height over the mean, \
-         and for outdoor air C_in/C_out.",
-        source_label(study)
-    );
+    outln!(o, "Steady state under a continuous source ({}), per size:", source_label(study));
     let ventilated = rows.iter().any(|r| r.steady.as_ref().is_some_and(|s| s.indoor_outdoor.is_some()));
     outln!(
         o,
@@ -423,6 +442,12 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
                 .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
         );
     }
+    // One legend line; room --help and docs/commands.md say more.
+    outln!(
+        o,
+        "time in air: airborne number per particle emitted an hour; % of the source; beyond %: of the time in air \
+         from past the run; near floor: lowest tenth of the height over the mean; room --help says more."
+    );
 }
 
 /// The near-floor concentration over the mean under a source spread over the room, `1.02`,
@@ -457,13 +482,17 @@ impl DistributionReport {
         // Micrograms read better than kilograms.
         let k = if absolute { 1e9 } else { 1.0 };
         let unit = if absolute { "ug in the room" } else { "share of the distribution's mass" };
+        // Each header's unit: micrograms, or a share (of the distribution's whole mass).
+        let short = if absolute { "ug" } else { "share" };
         let densities: Vec<String> =
-            first_seen(self.bins.iter().map(|b| b.density)).iter().map(f64::to_string).collect();
+            first_seen(self.bins.iter().map(|b| b.density)).iter().map(|&d| shown(d)).collect();
         outln!(
             o,
-            "Size distribution: {} bins (density {} kg/m^3), each run at its geometric midpoint; mass ({unit}):",
+            "Size distribution: {} bins (density {} kg/m^3), each run at its geometric midpoint; mass ({unit}), {:.3e} \
+             beyond the bins' range left out:",
             self.bins.len(),
-            densities.join(", ")
+            densities.join(", "),
+            self.outside_bins * k
         );
         let cell = |p: &Part| match p.quadrature {
             Some(q) => format!("{:.3e} +- {:.1e} ({:.1e})", p.value * k, p.error * k, q * k),
@@ -472,21 +501,21 @@ impl DistributionReport {
         let furnished = |text: String| if self.furnished { format!("  {text:>28}") } else { String::new() };
         outln!(
             o,
-            "{:>6}  {:>10}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
+            "{:>6}  {:>16}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
             "",
-            "injected",
-            "floor",
-            "ceiling",
-            "walls",
-            furnished("furnishings".into()),
-            "airborne (end)",
-            "exhausted",
+            format!("injected ({short})"),
+            format!("floor ({short})"),
+            format!("ceiling ({short})"),
+            format!("walls ({short})"),
+            furnished(format!("furnishings ({short})")),
+            format!("airborne, end ({short})"),
+            format!("exhausted ({short})"),
             "beta of mass (1/h)"
         );
         for (name, s) in self.classes() {
             outln!(
                 o,
-                "{name:>6}  {:>10.3e}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
+                "{name:>6}  {:>16.3e}  {:>28}  {:>28}  {:>28}{}  {:>28}  {:>28}  {:>20}",
                 s.injected * k,
                 cell(&s.floor),
                 cell(&s.ceiling),
@@ -528,13 +557,11 @@ impl DistributionReport {
                 unseen.join(", ")
             );
         }
+        // One legend line; room --help and docs/commands.md say more.
         outln!(
             o,
-            "+- one standard error over the runs' randomness; (x) a bound on the error of taking each bin's fate from \
-             one run at its midpoint, where each share is monotonic in d (?: a bin without neighbours). Mass of the modes beyond the bins' range, left out: {:.3e}. {PM_DEFINITION}. \
-             beta of mass: the loss rate of the airborne mass by deposition (not ventilation) while its size \
-             distribution is the injected one; over part of the mass, a lower bound on the whole's.",
-            self.outside_bins * k
+            "+- 1 s.e.; (x) bound on the error of one run per bin (? no neighbour); PM2.5, PM10: aerodynamic \
+             diameter below 2.5, 10 um; beta of mass: its deposition loss rate; room --help says more."
         );
     }
 }
