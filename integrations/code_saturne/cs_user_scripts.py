@@ -1,5 +1,6 @@
 # Every case of this directory: the box mesh written by box_mesh.py, and libdepo found through DEPO_PREFIX
-# (an install prefix of libdepo: include/depo.h and lib/libdepo.so).
+# (an install prefix of libdepo: include/depo.h and lib/libdepo.so); with DEPO_CS_RESTART, the
+# checkpoint directory of an earlier run to restart from (the duct's particle runs).
 import os
 
 
@@ -8,7 +9,7 @@ def define_domain_parameters(domain):
         domain.preprocess_on_restart = False
         domain.mesh_input = None
         domain.partition_input = None
-        domain.restart_input = None
+        domain.restart_input = os.environ.get("DEPO_CS_RESTART") or None
         domain.mesh_dir = None
         domain.meshes = [os.environ.get("DEPO_CS_MESH", "box.msh")]
         prefix = os.environ["DEPO_PREFIX"]

@@ -331,13 +331,14 @@ fn channel_wall_function_deposits_what_the_correlation_gives() {
 }
 
 /// The duct case (`integrations/code_saturne/duct_case`, 2 m at 1 m/s, gravity across it,
-/// 8000 particles each of 10, 30 and 100 um) with the wall function on every wall, whole:
-/// per size, the deposits the hook drew against the sum, over the steps and the particles in
-/// wall cells, of the chance `1 - prod(1 - P_f)` the duct's census computes before the hook
+/// 8000 particles each of 10, 30 and 100 um) with the wall function on every wall, whole (its
+/// flow stage, then the wall-function run restarted from the developed flow): per size, the
+/// deposits the hook drew against the sum, over the steps and the particles in wall cells, of
+/// the chance `1 - prod(1 - P_f)` the duct's census computes before the hook
 /// draws, from the face's `ustar` and the cell's extent from the duct's geometry (the
 /// correlation's flux `v_d C_w` in number), within three binomial standard errors. About
-/// 40 s, Code_Saturne's compilation included. With the hook's chance halved it fails at every
-/// size: 154, 1281 and 7943 deposits against 246, 2595 and 16036 predicted (6, 26 and 65
+/// 45 s, both runs' compilation included. With the hook's chance halved it fails at every
+/// size: 106, 1291 and 7942 deposits against 244, 2596 and 15924 predicted (9, 26 and 64
 /// errors; the prediction grows as the particles stay longer in the wall cells).
 #[test]
 fn duct_wall_function_deposits_what_the_correlation_predicts() {

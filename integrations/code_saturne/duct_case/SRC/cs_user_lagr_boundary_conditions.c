@@ -1,9 +1,11 @@
-/* Duct: particles of 10, 30 and 100 um (1000 kg/m^3) enter with the air at the inlet, 20 of
-   each size per step from step 200 to step 599 (1 s to 3 s, after the flow has crossed the
-   duct twice), and leave at the outlet. The walls are either Code_Saturne's own deposition
-   (CS_LAGR_DEPO2: every contact deposits, a perfect sink), depo's law, or depo's deposition
-   wall function, as the file `walls` in DATA says: "sink", "depo" or "wall-function" (the
-   last two with the zones of DATA/depo_zones). */
+/* Duct: in a particle run (restarted from the flow stage's developed flow), particles of 10,
+   30 and 100 um (1000 kg/m^3) enter with the air at the inlet, 20 of each size per step over
+   the run's first 2 s (duct.h), and leave at the outlet. The walls are Code_Saturne's own
+   deposition walls (CS_LAGR_DEPO2: a particle that reaches one deposits and stays), which
+   are a perfect sink ("sink") or, with Code_Saturne's deposition model on ("model",
+   cs_user_lagr_model.c), the walls the model's particles reach; or depo's law ("depo"), or
+   depo's deposition wall function ("wall-function"), the last two with the zones of
+   DATA/depo_zones; as the file `walls` in DATA says, which says "flow" for the flow stage. */
 
 #include "cs_defs.h"
 
@@ -29,8 +31,8 @@ duct_walls_mode(void)
     char word[16] = "";
     FILE *f = fopen("walls", "r");
     if (f == NULL || fscanf(f, "%15s", word) != 1)
-      bft_error(__FILE__, __LINE__, 0,
-                "duct: DATA/walls must say \"sink\", \"depo\" or \"wall-function\"\n");
+      bft_error(__FILE__, __LINE__, 0, "duct: DATA/walls must say \"flow\", \"sink\", "
+                "\"depo\", \"wall-function\" or \"model\"\n");
     fclose(f);
     if (strcmp(word, "sink") == 0)
       mode = DUCT_SINK;
@@ -38,9 +40,13 @@ duct_walls_mode(void)
       mode = DUCT_DEPO;
     else if (strcmp(word, "wall-function") == 0)
       mode = DUCT_WALL_FUNCTION;
+    else if (strcmp(word, "model") == 0)
+      mode = DUCT_MODEL;
+    else if (strcmp(word, "flow") == 0)
+      mode = DUCT_FLOW;
     else
-      bft_error(__FILE__, __LINE__, 0,
-                "duct: DATA/walls says \"%s\", not sink, depo or wall-function\n", word);
+      bft_error(__FILE__, __LINE__, 0, "duct: DATA/walls says \"%s\", not flow, sink, depo, "
+                "wall-function or model\n", word);
   }
   return mode;
 }
@@ -54,12 +60,12 @@ cs_user_lagr_boundary_conditions(const int  bc_type[])
   for (int w = 0; w < 3; w++)
     bcs->zone_type[cs_boundary_zone_by_name(walls[w])->id] = CS_LAGR_DEPO2;
   bcs->zone_type[cs_boundary_zone_by_name("outlet")->id] = CS_LAGR_OUTLET;
-  if (duct_walls_mode() != DUCT_SINK)
+  if (duct_walls_mode() == DUCT_DEPO || duct_walls_mode() == DUCT_WALL_FUNCTION)
     depo_cs_setup(bcs);
 
   int inlet = cs_boundary_zone_by_name("inlet")->id;
   bcs->zone_type[inlet] = CS_LAGR_INLET;
-  int step = cs_glob_time_step->nt_cur;
+  int step = cs_glob_time_step->nt_cur - DUCT_FLOW_STEPS;
   for (int set_id = 0; set_id < DUCT_SIZES; set_id++) {
     cs_lagr_injection_set_t *set = cs_lagr_get_injection_set(bcs, inlet, set_id);
     set->n_inject = (step >= DUCT_FIRST_STEP && step <= DUCT_LAST_STEP) ? DUCT_PER_STEP : 0;

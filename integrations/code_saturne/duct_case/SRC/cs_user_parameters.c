@@ -1,5 +1,8 @@
-/* Duct: k-epsilon turbulence, gravity along -z, 5 ms steps, 1000 steps (5 s); with depo's
-   wall function, the boundary field of the wall functions' friction velocity it reads. */
+/* Duct: k-epsilon turbulence, gravity along -z, 5 ms steps. The flow stage runs
+   DUCT_FLOW_STEPS from rest; a particle run restarts from it for DUCT_PARTICLE_STEPS more
+   (Code_Saturne's step count is absolute). The boundary field of the wall functions'
+   friction velocity, `ustar`, is made in every run: the census reads it, depo's wall
+   function reads it, and the deposition model would make it itself. */
 
 #include "cs_defs.h"
 #include "cs_domain.h"
@@ -27,8 +30,8 @@ cs_user_parameters(cs_domain_t *domain)
 {
   cs_time_step_options_t *time_opt = cs_get_glob_time_step_options();
   time_opt->idtvar = 0;
-  domain->time_step->dt_ref = 5e-3;
-  domain->time_step->nt_max = 1000;
+  domain->time_step->dt_ref = DUCT_DT;
+  domain->time_step->nt_max = DUCT_FLOW_STEPS + (duct_walls_mode() == DUCT_FLOW ? 0 : DUCT_PARTICLE_STEPS);
   cs_physical_constants_t *constants = cs_get_glob_physical_constants();
   constants->gravity[0] = 0.0;
   constants->gravity[1] = 0.0;
@@ -37,8 +40,7 @@ cs_user_parameters(cs_domain_t *domain)
   cs_turb_ref_values_t *ref = cs_get_glob_turb_ref_values();
   ref->uref = 1.0;
   ref->almax = 0.2;
-  if (duct_walls_mode() == DUCT_WALL_FUNCTION)
-    cs_field_find_or_create("ustar", CS_FIELD_PROPERTY, CS_MESH_LOCATION_BOUNDARY_FACES, 1, false);
+  cs_field_find_or_create("ustar", CS_FIELD_PROPERTY, CS_MESH_LOCATION_BOUNDARY_FACES, 1, false);
 }
 
 END_C_DECLS

@@ -1,7 +1,11 @@
-/* Duct: at the last step, where each injected particle is: deposited on which wall, still
-   in the air, or gone through the outlet (what was injected and is neither). Written to
-   `duct_census.csv`, one row per size, for duct_report.py; with depo's walls, the contacts
-   and the time per call of the law written to the log. Serial runs only.
+/* Duct: in every run, every 20 steps (0.1 s), each wall's area-weighted mean friction
+   velocity (the boundary field `ustar`) and the largest streamwise velocity of the outlet's
+   cells (the centre line's), in `duct_flow.csv`: how the flow stage develops and that a particle run's flow
+   stays as it was. At the last step of a particle run, where each injected particle is:
+   deposited on which wall, still in the air, or gone through the outlet (what was injected
+   and is neither). Written to `duct_census.csv`, one row per size, for duct_report.py; with
+   depo's walls, the contacts and the time per call of the law written to the log. Serial
+   runs only.
 
    With depo's wall function (walls "wall-function"), at every step: before the hook draws,
    the chance that each particle in a wall cell deposits in the step, 1 - prod(1 - P_f) over
@@ -23,7 +27,9 @@
 
 #include "bft_error.h"
 #include "cs_boundary_zone.h"
+#include "cs_domain.h"
 #include "cs_field.h"
+#include "cs_field_pointer.h"
 #include "cs_lagr.h"
 #include "cs_lagr_particle.h"
 #include "cs_lagr_prototypes.h"
@@ -31,6 +37,7 @@
 #include "cs_mesh_quantities.h"
 #include "cs_parall.h"
 #include "cs_physical_constants.h"
+#include "cs_prototypes.h"
 #include "cs_time_step.h"
 
 #include "bft_printf.h"
@@ -165,6 +172,36 @@ _wall_means(double ustar_mean[3], double volume[3])
 }
 
 void
+cs_user_extra_operations(cs_domain_t *domain)
+{
+  CS_UNUSED(domain);
+  int step = cs_glob_time_step->nt_cur;
+  if (step % 20 != 0 && step != cs_glob_time_step->nt_prev + 1)
+    return;
+  static FILE *f = NULL;
+  if (f == NULL) {
+    f = fopen("duct_flow.csv", "w");
+    fprintf(f, "step,time,floor_ustar,ceiling_ustar,sides_ustar,outlet_centre_velocity\n");
+  }
+  double ustar_mean[3], volume[3];
+  _wall_means(ustar_mean, volume);
+  /* The outlet's cells: the largest of their velocities along the duct. */
+  const cs_mesh_t *m = cs_glob_mesh;
+  const cs_real_3_t *u = (const cs_real_3_t *)CS_F_(vel)->val;
+  const cs_zone_t *z = cs_boundary_zone_by_name("outlet");
+  double centre = 0.0;
+  for (cs_lnum_t j = 0; j < z->n_elts; j++)
+    centre = fmax(centre, u[m->b_face_cells[z->elt_ids[j]]][0]);
+  fprintf(f, "%d,%.4f,%.6g,%.6g,%.6g,%.6g\n", step, cs_glob_time_step->t_cur, ustar_mean[0],
+          ustar_mean[1], ustar_mean[2], centre);
+  fflush(f);
+  if (step == cs_glob_time_step->nt_max) {
+    fclose(f);
+    f = NULL;
+  }
+}
+
+void
 cs_user_lagr_extra_operations(const cs_real_t  dt[])
 {
   CS_UNUSED(dt);
@@ -193,7 +230,7 @@ cs_user_lagr_extra_operations(const cs_real_t  dt[])
   long injected = (long)DUCT_PER_STEP * (DUCT_LAST_STEP - DUCT_FIRST_STEP + 1);
   FILE *f = fopen("duct_census.csv", "w");
   fprintf(f, "walls,diameter,injected,floor,ceiling,sides,airborne,outlet\n");
-  const char *mode[3] = {"sink", "depo", "wall-function"};
+  const char *mode[4] = {"sink", "depo", "wall-function", "model"};
   for (int s = 0; s < DUCT_SIZES; s++) {
     /* The wall function's deposits have left the set: not in the outlet's share. */
     long out = injected - counts[s][0] - counts[s][1] - counts[s][2] - counts[s][3] - wf_deposited[s];
