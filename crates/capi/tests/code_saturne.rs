@@ -12,7 +12,9 @@
 //!
 //! And it runs the duct case with depo's wall function (Lai & Nazaroff's correlation) on its
 //! floor, ceiling and sides: each size's deposits must be the number the correlation's flux
-//! predicts from the particles the wall cells held, step by step, within binomial errors.
+//! predicts from the particles the wall cells held, step by step, within binomial errors. The
+//! duct's figure must be what its report draws from the stored CSV files, Code_Saturne's
+//! deposition model among its series (Python only, no Code_Saturne run).
 //!
 //! Without Code_Saturne the tests fail, saying what to install, unless `DEPO_SKIP_CODE_SATURNE`
 //! is 1: then they say SKIPPED on stderr (never a silent pass), as the example tests do.
@@ -381,4 +383,45 @@ fn duct_wall_function_deposits_what_the_correlation_predicts() {
     }
     assert_eq!(sizes, 3, "every size reported");
     eprintln!("Code_Saturne duct with the wall function: {:.0} s", start.elapsed().as_secs_f64());
+}
+
+/// The duct's figure (`docs/figures/code-saturne-duct.svg`) is what `duct_report.py --figure`
+/// draws from the report's stored CSV files (`integrations/code_saturne/duct.csv`,
+/// `duct_wall_function.csv`), byte for byte, so neither the figure nor the tables can drift from
+/// the other; and Code_Saturne's deposition model is among its series: its bars in the
+/// fates' panel for every size and place, and its triangle beside the wall function's deposits
+/// for every size. Needs Python 3 only.
+#[test]
+fn duct_figure_is_what_the_stored_csvs_draw_with_the_deposition_model() {
+    let dir = root().join("integrations/code_saturne");
+    let work = libdir().join("code-saturne-duct-figure");
+    std::fs::create_dir_all(&work).unwrap();
+    let svg = work.join("duct.svg");
+    run(Command::new("python3")
+        .arg(dir.join("duct_report.py"))
+        .arg("--figure")
+        .arg(dir.join("duct.csv"))
+        .arg(dir.join("duct_wall_function.csv"))
+        .arg(&svg));
+    let drawn = std::fs::read_to_string(&svg).unwrap();
+    let stored = std::fs::read_to_string(root().join("docs/figures/code-saturne-duct.svg")).unwrap();
+    assert!(
+        drawn == stored,
+        "docs/figures/code-saturne-duct.svg is not what duct_report.py --figure draws from the stored CSV files: redraw it"
+    );
+    let duct = std::fs::read_to_string(dir.join("duct.csv")).unwrap();
+    let model_rows = duct.lines().filter(|l| l.split(',').nth(1) == Some("model")).count();
+    assert_eq!(
+        model_rows,
+        3 * 5,
+        "the model's fate of each size in duct.csv (floor, ceiling, sides, airborne, outlet)"
+    );
+    // The model's colour: one bar per size and place in the fates' panel (3 sizes x 4 places)
+    // and its legend's square, and one triangle per size and its legend's in the other panel.
+    let green = "fill=\"#2ca02c\"";
+    let bars = drawn.lines().filter(|l| l.starts_with("<rect") && l.contains(green)).count();
+    assert_eq!(bars, 3 * 4 + 1, "the model's bars and legend in the fates' panel");
+    let triangles = drawn.lines().filter(|l| l.contains("<path") && l.contains(green)).count();
+    assert_eq!(triangles, 3 + 1, "the model's deposited fraction for each size and its legend");
+    assert!(drawn.contains("Code_Saturne deposition model"), "the model's legend");
 }
