@@ -3,7 +3,9 @@
    cells (the centre line's), in `duct_flow.csv`: how the flow stage develops and that a particle run's flow
    stays as it was. At the last step of a particle run, where each injected particle is:
    deposited on which wall, still in the air, or gone through the outlet (what was injected
-   and is neither). Written to `duct_census.csv`, one row per size, for duct_report.py; with
+   and is neither), and of those still in the air, how many are in a wall cell (within the
+   first 0.05 m cell of a wall) and within 1 mm of a wall. Written to `duct_census.csv`, one
+   row per size, for duct_report.py; with
    depo's walls, the contacts and the time per call of the law written to the log. Serial
    runs only.
 
@@ -212,31 +214,36 @@ cs_user_lagr_extra_operations(const cs_real_t  dt[])
   if (cs_glob_n_ranks > 1)
     bft_error(__FILE__, __LINE__, 0, "duct: the census is written by serial runs only\n");
 
-  /* Per size: floor, ceiling, sides, airborne. */
-  long counts[DUCT_SIZES][4] = {{0}};
+  /* Per size: floor, ceiling, sides, airborne; airborne in a wall cell, within 1 mm of a wall. */
+  long counts[DUCT_SIZES][4] = {{0}}, near[DUCT_SIZES][2] = {{0}};
   cs_lagr_particle_set_t *p = cs_glob_lagr_particle_set;
   for (cs_lnum_t i = 0; i < p->n_particles; i++) {
     double d = cs_lagr_particles_get_real(p, i, CS_LAGR_DIAMETER);
     int s = _size_of(d);
     const cs_real_t *x = cs_lagr_particles_attr_const(p, i, CS_LAGR_COORDS);
     int where = 3;
-    if (cs_lagr_particles_get_flag(p, i, CS_LAGR_PART_DEPOSITED)) {
-      /* The nearest wall of the 0.2 m x 0.2 m section. */
-      double floor = x[2], ceiling = 0.2 - x[2], side = fmin(x[1], 0.2 - x[1]);
+    /* The nearest wall of the 0.2 m x 0.2 m section. */
+    double floor = x[2], ceiling = 0.2 - x[2], side = fmin(x[1], 0.2 - x[1]);
+    if (cs_lagr_particles_get_flag(p, i, CS_LAGR_PART_DEPOSITED))
       where = (floor <= ceiling && floor <= side) ? 0 : (ceiling <= side ? 1 : 2);
+    else {
+      double gap = fmin(floor, fmin(ceiling, side));
+      near[s][0] += gap < 0.05;
+      near[s][1] += gap < 1e-3;
     }
     counts[s][where] += 1;
   }
   long injected = (long)DUCT_PER_STEP * (DUCT_LAST_STEP - DUCT_FIRST_STEP + 1);
   FILE *f = fopen("duct_census.csv", "w");
-  fprintf(f, "walls,diameter,injected,floor,ceiling,sides,airborne,outlet\n");
+  fprintf(f, "walls,diameter,injected,floor,ceiling,sides,airborne,outlet,"
+             "airborne_wall_cells,airborne_within_1mm\n");
   const char *mode[4] = {"sink", "depo", "wall-function", "model"};
   for (int s = 0; s < DUCT_SIZES; s++) {
     /* The wall function's deposits have left the set: not in the outlet's share. */
     long out = injected - counts[s][0] - counts[s][1] - counts[s][2] - counts[s][3] - wf_deposited[s];
-    fprintf(f, "%s,%g,%ld,%ld,%ld,%ld,%ld,%ld\n", mode[duct_walls_mode()],
+    fprintf(f, "%s,%g,%ld,%ld,%ld,%ld,%ld,%ld,%ld,%ld\n", mode[duct_walls_mode()],
             duct_diameters[s], injected, counts[s][0], counts[s][1], counts[s][2],
-            counts[s][3], out);
+            counts[s][3], out, near[s][0], near[s][1]);
   }
   fclose(f);
 
