@@ -744,6 +744,61 @@ fn room_decay_gives_no_z_without_deposits() {
     assert_eq!(&cells[1..5], ["<", cells[2], "[0]", "-"], "{line}");
 }
 
+/// The release table's shares: where no tracked particle ended in a place, the rule of three's
+/// 95 % upper bound 300/n % for n released with `[0]` (as the other room tables give a count of
+/// zero), never a `0.0` that reads as a measured share; `none` exhausted from a room nothing
+/// leaves. The table: a one-line heading, the header, a row per size, one legend line.
+#[test]
+fn release_shares_with_no_particle_give_a_bound() {
+    let dir = scratch("release-bounds");
+    let mirrors = dir.join("mirrors.toml");
+    std::fs::write(
+        &mirrors,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [ventilation]\nair_changes_per_hour = 10.0\n[walls.all]\nbehaviour = \"reflect\"\n\
+         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let closed = dir.join("closed.toml");
+    std::fs::write(
+        &closed,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6, 20e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    // The release table of `scene`: its lines up to the blank one after it.
+    let release = |scene: &std::path::Path| -> Vec<String> {
+        let text = ok_text(&["room", scene.to_str().unwrap(), "--no-plot"]);
+        let part = text.split("After the release at t = 0").nth(1).unwrap_or_else(|| panic!("{text}"));
+        part.lines().take_while(|l| !l.is_empty()).map(String::from).collect()
+    };
+    let bound = "< 1.5 [0]";
+    let table = release(&mirrors);
+    assert_eq!(table.len(), 4, "{table:?}");
+    assert!(table[0].len() < 110, "a one-line heading: {}", table[0]);
+    assert!(table[3].ends_with("room --help says more.") && table[3].len() < 200, "one legend line: {}", table[3]);
+    // Mirror walls: nothing on any surface, some exhausted, some airborne.
+    let row = &table[2];
+    assert_eq!(row.matches(bound).count(), 3, "floor, ceiling, walls: {row}");
+    let json = ok_json(&["room", mirrors.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    let shares = &json["sizes"][0]["release"];
+    for fate in ["exhausted", "airborne"] {
+        let share = 100.0 * shares[fate]["share"].as_f64().unwrap();
+        assert!(share > 0.0 && row.contains(&format!(" {share:.1} ")), "{fate} {share:.1} in {row}");
+    }
+    assert!(!row.split_whitespace().any(|c| c == "0.0"), "{row}");
+    // A closed room: exhausted is none by construction; at 1 um nothing deposits in 120 s.
+    let table = release(&closed);
+    assert_eq!(table.len(), 5, "{table:?}");
+    for row in &table[2..4] {
+        assert!(row.contains(" none ") && !row.split_whitespace().any(|c| c == "0.0"), "{row}");
+    }
+    assert_eq!(table[2].matches(bound).count(), 3, "{}", table[2]);
+    assert!(table[2].contains(" 100.0 "), "all airborne: {}", table[2]);
+    let help = ok_text(&["room", "--help"]);
+    assert!(help.contains("least-squares slope of ln N(t)") && help.contains("300/n"), "{help}");
+}
+
 #[test]
 fn channel_reports_v_plus_beside_wood() {
     let dir = scratch("channel");
