@@ -282,7 +282,27 @@ fn bench_reports_ratio_and_error() {
         let error = row["max_error"].as_f64().unwrap();
         let f32_kernel = row["kernel"].as_str().unwrap().starts_with("f32");
         assert!(error < if f32_kernel { 1e-4 } else { 1e-12 }, "{row}");
+        // A reference kernel's error is zero by construction.
+        if row["reference"].as_bool().unwrap() {
+            assert!(!f32_kernel && error == 0.0, "{row}");
+        }
     }
+    assert!(rows.iter().any(|r| r["reference"] == true) && rows.iter().any(|r| r["reference"] == false));
+}
+
+/// The kernels' table says `reference` where the error is zero by construction, not a
+/// measured `0.0e0`, and says why under the table.
+#[test]
+fn bench_names_the_reference_kernels() {
+    let table = ok_text(&["bench", "--n", "1000", "--reps", "1"]);
+    let kernels: Vec<&str> =
+        table.lines().skip(2).take_while(|l| l.starts_with("f64") || l.starts_with("f32")).collect();
+    assert!(kernels.len() > 20, "{table}");
+    for line in &kernels {
+        let reference = line.starts_with("f64") && !line.contains("fast-pow");
+        assert_eq!(line.ends_with(" reference"), reference, "{line}");
+    }
+    assert!(!table.contains("0.0e0") && table.contains("error 0 by construction"), "{table}");
 }
 
 fn write_csv(name: &str, text: &str) -> std::path::PathBuf {

@@ -60,7 +60,11 @@ struct Row {
     ceiling_impacts_per_second: f64,
     fraction_of_ceiling: f64,
     gigabytes_per_second: f64,
+    /// The largest error against the reference; 0 for a reference kernel itself.
     max_error: f64,
+    /// Whether this kernel is its own reference (the f64 kernel with libm's pow, or one with
+    /// exponents 1 and 1/2, which take no pow): its error is zero by construction.
+    reference: bool,
 }
 
 pub fn run(args: &BenchArgs) -> Result<(), Error> {
@@ -99,6 +103,7 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
             fraction_of_ceiling: m.fraction(),
             gigabytes_per_second: m.rate() * m.bytes_per_impact() as f64 / 1e9,
             max_error: error_against_reference(scenario, args.n.min(200_000)),
+            reference: scenario.is_reference(),
         });
         progress.inc(1);
     }
@@ -119,13 +124,20 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
             );
             for r in &rows {
                 out!(
-                    "{:<30} {:>11.0} {:>11.0} {:>9.2} {:>7.1} {:>10.1e}",
+                    "{:<30} {:>11.0} {:>11.0} {:>9.2} {:>7.1} {:>10}",
                     r.kernel,
                     r.impacts_per_second / 1e6,
                     r.ceiling_impacts_per_second / 1e6,
                     r.fraction_of_ceiling,
                     r.gigabytes_per_second,
-                    r.max_error
+                    if r.reference { "reference".to_string() } else { format!("{:.1e}", r.max_error) }
+                );
+            }
+            if rows.iter().any(|r| r.reference) {
+                out!(
+                    "max error: the largest |V - V_ref| / |v| against the f64 libm-pow kernel of the same setup; \
+                     reference: that kernel, or one computing the same (exponents 1 and 1/2 take no pow), error 0 by \
+                     construction."
                 );
             }
         }
