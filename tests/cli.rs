@@ -305,6 +305,51 @@ fn bench_names_the_reference_kernels() {
     assert!(!table.contains("0.0e0") && table.contains("error 0 by construction"), "{table}");
 }
 
+/// The kernels' figure names every point, no label over another or a point (the reference
+/// kernels sit in a column at the axis' floor, which the legend explains).
+#[test]
+fn bench_figure_labels_every_point_apart() {
+    let dir = scratch("bench-figure");
+    let figure = dir.join("bench.svg");
+    let table = ok_text(&["bench", "--n", "1000", "--reps", "1", "--plot", figure.to_str().unwrap()]);
+    let kernels = table.lines().filter(|l| l.starts_with("f64") || l.starts_with("f32")).count();
+    let svg = std::fs::read_to_string(&figure).unwrap();
+    assert!(legend_y(&svg, "f64 reference kernels: error 0 by construction, drawn at 1e-17") > 500.0);
+    // Each point's label: its box from its anchor, about 5.2 pixels a character, 11 high.
+    let attribute = |chunk: &str, name: &str| -> i32 {
+        chunk.split(&format!(" {name}=\"")).nth(1).unwrap().split('"').next().unwrap().parse().unwrap()
+    };
+    let boxes: Vec<(String, [i32; 4])> = svg
+        .split("<text")
+        .skip(1)
+        .filter(|chunk| chunk.contains("font-size=\"8.87"))
+        .map(|chunk| {
+            let text = chunk.split_once('>').unwrap().1.split("</text>").next().unwrap().trim().to_string();
+            let (x, y) = (attribute(chunk, "x"), attribute(chunk, "y"));
+            let width = (text.chars().count() as f64 * 5.2).ceil() as i32;
+            let left = if chunk.contains("text-anchor=\"end\"") { x - width } else { x };
+            (text, [left, y - 5, left + width, y + 6])
+        })
+        .filter(|(_, b)| b[3] < 500)
+        .collect();
+    assert_eq!(boxes.len(), kernels, "a label per kernel: {boxes:?}");
+    let points: Vec<[i32; 4]> = svg
+        .split("<circle")
+        .skip(1)
+        .map(|c| (attribute(c, "cx"), attribute(c, "cy")))
+        .filter(|&(_, y)| y < 500)
+        .map(|(x, y)| [x - 4, y - 4, x + 4, y + 4])
+        .collect();
+    assert_eq!(points.len(), kernels);
+    let apart = |p: &[i32; 4], q: &[i32; 4]| p[2] <= q[0] || q[2] <= p[0] || p[3] <= q[1] || q[3] <= p[1];
+    for (i, (a, p)) in boxes.iter().enumerate() {
+        for (b, q) in &boxes[i + 1..] {
+            assert!(apart(p, q), "{a} {p:?} over {b} {q:?}");
+        }
+        assert!(points.iter().all(|q| apart(p, q)), "{a} {p:?} over a point");
+    }
+}
+
 fn write_csv(name: &str, text: &str) -> std::path::PathBuf {
     let path = std::env::temp_dir().join(format!("depo-{}-{name}", std::process::id()));
     std::fs::write(&path, text).unwrap();
