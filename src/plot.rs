@@ -346,14 +346,17 @@ fn overlap(a: (i32, i32, i32, i32), b: (i32, i32, i32, i32)) -> i32 {
 
 /// Where each label of `marks` goes, inside the plotting area `xs` x `ys` (pixels): beside its
 /// point, to the right (to the left in the right third), or where that would cover another
-/// label or a marker, on the other side, then moved up or down a line at a time (with a line
-/// leading to it) until it covers nothing. Labels are placed from the top down; a label that
-/// finds no free place within ten lines takes the place where it covers least. So that points
-/// on top of one another (kernels with the same error and speed, a column of zero-error kernels
-/// drawn at the axis' floor) keep every label readable.
+/// label or a marker, on the other side, then moved up or down a few pixels at a time, then
+/// further out, until it covers nothing (a line leads to a label moved off its point). Labels
+/// are placed from the top down; one that finds no free place takes the place where it covers
+/// least. So that points on top of one another (kernels with the same error and speed, a column
+/// of zero-error kernels drawn at the axis' floor) keep every label readable.
 fn place_labels(marks: &[Mark], xs: (i32, i32), ys: (i32, i32)) -> Vec<Placed> {
     const GAP: i32 = 7;
     const MARKER: i32 = 5;
+    // Moves up or down by 3 pixels, up to 240.
+    const SHIFT: i32 = 3;
+    const SHIFTS: i32 = 80;
     let mut taken: Vec<(i32, i32, i32, i32)> = marks
         .iter()
         .filter(|m| m.marker)
@@ -366,35 +369,40 @@ fn place_labels(marks: &[Mark], xs: (i32, i32), ys: (i32, i32)) -> Vec<Placed> {
         let (text, color) = m.label.clone().expect("labelled");
         let width = label_width(&text);
         let prefer_left = m.at.0 - xs.0 > 7 * (xs.1 - xs.0) / 10;
-        let at = |left: bool, dy: i32| {
+        let at = |left: bool, dx: i32, dy: i32| {
             let top = m.at.1 + dy - LABEL_HEIGHT / 2;
-            let x = if left { m.at.0 - GAP - width } else { m.at.0 + GAP };
+            let x = if left { m.at.0 - GAP - dx - width } else { m.at.0 + GAP + dx };
             (x, top, x + width, top + LABEL_HEIGHT)
         };
         let inside = |b: (i32, i32, i32, i32)| b.0 >= xs.0 && b.2 <= xs.1 && b.1 >= ys.0 && b.3 <= ys.1;
-        let mut best: Option<(i32, bool, i32)> = None;
-        'search: for step in 0..=10 {
-            let shifts = if step == 0 { vec![0] } else { vec![-step * LABEL_HEIGHT, step * LABEL_HEIGHT] };
-            for dy in shifts {
-                for left in [prefer_left, !prefer_left] {
-                    let b = at(left, dy);
-                    if !inside(b) {
-                        continue;
-                    }
-                    let covered: i32 = taken.iter().map(|&t| overlap(b, t)).sum();
-                    if best.is_none_or(|(c, _, _)| covered < c) {
-                        best = Some((covered, left, dy));
-                    }
-                    if covered == 0 {
-                        break 'search;
+        // The nearest free place: beside the point, then a few pixels at a time up or down (so
+        // that a label fits between two others wherever they are), then further out.
+        let mut best: Option<(i32, bool, i32, i32)> = None;
+        'search: for dx in [0, 3 * GAP, 6 * GAP] {
+            for step in 0..=SHIFTS {
+                let shifts = if step == 0 { vec![0] } else { vec![-step * SHIFT, step * SHIFT] };
+                for dy in shifts {
+                    for left in [prefer_left, !prefer_left] {
+                        let b = at(left, dx, dy);
+                        if !inside(b) {
+                            continue;
+                        }
+                        let covered: i32 = taken.iter().map(|&t| overlap(b, t)).sum();
+                        if best.is_none_or(|(c, ..)| covered < c) {
+                            best = Some((covered, left, dx, dy));
+                        }
+                        if covered == 0 {
+                            break 'search;
+                        }
                     }
                 }
             }
         }
-        let (_, left, dy) = best.unwrap_or((0, prefer_left, 0));
-        let area = at(left, dy);
+        let (_, left, dx, dy) = best.unwrap_or((0, prefer_left, 0, 0));
+        let area = at(left, dx, dy);
         taken.push(area);
-        placed.push(Placed { text, color, point: m.at, area, left, leader: dy != 0 });
+        let leader = dx > 0 || dy.abs() > LABEL_HEIGHT / 2;
+        placed.push(Placed { text, color, point: m.at, area, left, leader });
     }
     placed
 }
