@@ -326,7 +326,7 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
     );
     outln!(
         o,
-        "{:>8}  {:>28} {:>6} {:>12}  {:>11} {:>11} {:>11}{} {:>11} {:>11}  {:>20}  {:>28}",
+        "{:>8}  {:>28} {:>6} {:>12}  {:>12} {:>12} {:>12}{} {:>12} {:>12}  {:>20}  {:>28}",
         "d (um)",
         "beta fitted (1/h)",
         "z",
@@ -369,7 +369,7 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
         let exhaust = ach > 0.0 || r.filter_removal_per_hour.is_some_and(|f| f > 0.0);
         outln!(
             o,
-            "{:>8.3}  {:>28} {:>6} {:>12}  {:>11} {:>11} {:>11}{} {:>11} {:>11}  {:>20}  {:>28}",
+            "{:>8.3}  {:>28} {:>6} {:>12}  {:>12} {:>12} {:>12}{} {:>12} {:>12}  {:>20}  {:>28}",
             r.diameter_um,
             fitted,
             z,
