@@ -864,6 +864,37 @@ fn release_shares_with_no_particle_give_a_bound() {
     assert!(help.contains("least-squares slope of ln N(t)") && help.contains("300/n"), "{help}");
 }
 
+/// A size with no deposit event in the window: the first table gives `beta` as its 95 % upper
+/// bound with `[0]` and the ratio to Lai & Nazaroff's as a bound, never `0.00e0 +- 0.0e0` and
+/// a ratio of 0.00.
+#[test]
+fn a_beta_with_no_deposit_gives_its_bound() {
+    let dir = scratch("beta-bound");
+    let scene = dir.join("closed.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6, 20e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let path = scene.to_str().unwrap();
+    let json = ok_json(&["room", path, "--format", "json", "--no-plot"]);
+    let beta = &json["sizes"][0]["beta_per_hour"];
+    assert_eq!(beta["events"], 0, "{beta}");
+    let bound = beta["upper_bound"].as_f64().unwrap();
+    let model = json["sizes"][0]["lai_nazaroff"]["beta_per_hour"].as_f64().unwrap();
+    let text = ok_text(&["room", path, "--no-plot"]);
+    let row = text.lines().find(|l| l.trim_start().starts_with("1.000")).unwrap();
+    assert!(row.contains(&format!("< {bound:.2e} [0]")), "{row}");
+    assert!(row.contains(&format!("< {:.2}", bound / model)), "{row}");
+    assert!(!row.contains("0.00e0") && !row.split_whitespace().any(|c| c == "0.00"), "{row}");
+    // The 20 um size, with deposits, keeps its figure and ratio.
+    let twenty = &json["sizes"][1]["beta_per_hour"];
+    let ratio = twenty["value"].as_f64().unwrap() / json["sizes"][1]["lai_nazaroff"]["beta_per_hour"].as_f64().unwrap();
+    let row = text.lines().find(|l| l.trim_start().starts_with("20.000")).unwrap();
+    assert!(row.contains(&format!(" {ratio:.2} ")), "{ratio:.2} in {row}");
+}
+
 #[test]
 fn channel_reports_v_plus_beside_wood() {
     let dir = scratch("channel");
