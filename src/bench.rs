@@ -88,6 +88,16 @@ impl Scenario {
             }
     }
 
+    /// Whether this kernel computes exactly what [`error_against_reference`] compares it with:
+    /// the f64 kernel with libm's pow, or an f64 kernel with exponents of 1 and 1/2, which take
+    /// no pow in either mode. Its error is then zero by construction, not a measurement.
+    #[must_use]
+    pub fn is_reference(&self) -> bool {
+        let plain = |x: f64| x == 1.0 || x == 0.5;
+        self.precision == Precision::F64
+            && (self.power == PowerMode::Exact || (plain(self.exponents.0) && plain(self.exponents.1)))
+    }
+
     /// The law used: the li1997-sio2 constants with the scenario's exponents and friction 0.3
     /// (or none).
     #[must_use]
@@ -547,6 +557,16 @@ mod tests {
                 copy_kernel_touches_everything::<f64>(spin, per_particle_normals);
                 copy_kernel_touches_everything::<f32>(spin, per_particle_normals);
             }
+        }
+    }
+
+    /// The kernels the table calls the reference are those whose error is zero by
+    /// construction, and only they: every other kernel differs from its reference.
+    #[test]
+    fn the_reference_kernels_are_exact_and_the_others_not() {
+        for scenario in standard_scenarios(2000) {
+            let error = error_against_reference(scenario, 2000);
+            assert_eq!(scenario.is_reference(), error == 0.0, "{}: {error:e}", scenario.label());
         }
     }
 }

@@ -236,10 +236,11 @@ fn ranges(drawn: &[&Drawn], (log_x, log_y): (bool, bool)) -> Option<((f64, f64),
 }
 
 /// Draws the series `drawn` on the chart context `$chart` (its error bars, then its points or
-/// line, then the points' labels: to the right of a point, or to its left where `$right(x)`
-/// says it is near the right edge); `$fail` turns a drawing error into the command's.
+/// line), then the points' labels onto `$root` where [`place_labels`] puts them; `$fail` turns
+/// a drawing error into the command's.
 macro_rules! draw_series {
-    ($chart:expr, $drawn:expr, $log_y:expr, $right:expr, $fail:expr) => {{
+    ($chart:expr, $root:expr, $drawn:expr, $log_y:expr, $fail:expr) => {{
+        let mut marks = Vec::new();
         for s in $drawn {
             let color = s.color;
             if !s.errors.is_empty() {
@@ -273,24 +274,137 @@ macro_rules! draw_series {
                         .map_err(|e| $fail(&e))?;
                 }
             }
-            let font = TextStyle::from(("sans-serif", 11).into_font()).color(&color);
-            $chart
-                .draw_series(s.points.iter().zip(&s.labels).map(|(&p, l)| {
-                    let (pos, dx) = if $right(p.0) { (HPos::Right, -7) } else { (HPos::Left, 7) };
-                    EmptyElement::at(p) + Text::new(l.clone(), (dx, 0), font.pos(Pos::new(pos, VPos::Center)))
-                }))
-                .map_err(|e| $fail(&e))?;
+            let marker = matches!(s.style, Style::Markers | Style::UpperBounds);
+            for (k, p) in s.points.iter().enumerate() {
+                let label = s.labels.get(k).map(|l| (l.clone(), color));
+                if marker || label.is_some() {
+                    marks.push(Mark { at: $chart.backend_coord(p), marker, label });
+                }
+            }
+        }
+        let (xs, ys) = $chart.plotting_area().get_pixel_range();
+        for placed in place_labels(&marks, (xs.start, xs.end), (ys.start, ys.end)) {
+            let font = TextStyle::from((LABEL_FONT, 11).into_font()).color(&placed.color);
+            let (pos, x) = if placed.left { (HPos::Right, placed.area.2) } else { (HPos::Left, placed.area.0) };
+            let y = (placed.area.1 + placed.area.3) / 2;
+            if placed.leader {
+                // A thin line from the point to its label, moved off it to stay clear of others.
+                let from = (placed.point.0 + if placed.left { -5 } else { 5 }, placed.point.1);
+                $root
+                    .draw(&PathElement::new(vec![from, (x, y)], placed.color.stroke_width(1)))
+                    .map_err(|e| $fail(&e))?;
+            }
+            let text = Text::new(placed.text, (x, y), font.pos(Pos::new(pos, VPos::Center)));
+            $root.draw(&text).map_err(|e| $fail(&e))?;
         }
     }};
 }
 
-/// How far along the axis from `x0` to `x1` the value `x` lies, 0 to 1.
-fn share_along(x: f64, (x0, x1): (f64, f64), log: bool) -> f64 {
-    if log {
-        (x / x0).ln() / (x1 / x0).ln()
+/// The font of the points' labels.
+const LABEL_FONT: &str = "sans-serif";
+
+/// A point as drawn, in pixels: whether a marker sits on it, and its label with its colour.
+struct Mark {
+    at: (i32, i32),
+    marker: bool,
+    label: Option<(String, RGBColor)>,
+}
+
+/// A label where [`place_labels`] puts it.
+struct Placed {
+    text: String,
+    color: RGBColor,
+    point: (i32, i32),
+    /// Its box in pixels: left, top, right, bottom.
+    area: (i32, i32, i32, i32),
+    /// Whether it sits to the left of its point.
+    left: bool,
+    /// Whether it is moved up or down from its point, a line leading to it.
+    leader: bool,
+}
+
+/// A label's box, in pixels: about 5.2 pixels a character of the 11-point labels as an SVG
+/// viewer draws them (plotters writes them at 8.9 px), and a line of 11 pixels.
+const LABEL_CHAR: f64 = 5.2;
+const LABEL_HEIGHT: i32 = 11;
+
+/// A label's width in pixels.
+fn label_width(text: &str) -> i32 {
+    (text.chars().count() as f64 * LABEL_CHAR).ceil() as i32
+}
+
+/// How many square pixels two boxes (left, top, right, bottom) share.
+fn overlap(a: (i32, i32, i32, i32), b: (i32, i32, i32, i32)) -> i32 {
+    let w = a.2.min(b.2) - a.0.max(b.0);
+    let h = a.3.min(b.3) - a.1.max(b.1);
+    if w > 0 && h > 0 {
+        w * h
     } else {
-        (x - x0) / (x1 - x0)
+        0
     }
+}
+
+/// Where each label of `marks` goes, inside the plotting area `xs` x `ys` (pixels): beside its
+/// point, to the right (to the left in the right third), or where that would cover another
+/// label or a marker, on the other side, then moved up or down a few pixels at a time, then
+/// further out, until it covers nothing (a line leads to a label moved off its point). Labels
+/// are placed from the top down; one that finds no free place takes the place where it covers
+/// least. So that points on top of one another (kernels with the same error and speed, a column
+/// of zero-error kernels drawn at the axis' floor) keep every label readable.
+fn place_labels(marks: &[Mark], xs: (i32, i32), ys: (i32, i32)) -> Vec<Placed> {
+    const GAP: i32 = 7;
+    const MARKER: i32 = 5;
+    // Moves up or down by 3 pixels, up to 240.
+    const SHIFT: i32 = 3;
+    const SHIFTS: i32 = 80;
+    let mut taken: Vec<(i32, i32, i32, i32)> = marks
+        .iter()
+        .filter(|m| m.marker)
+        .map(|m| (m.at.0 - MARKER, m.at.1 - MARKER, m.at.0 + MARKER, m.at.1 + MARKER))
+        .collect();
+    let mut order: Vec<&Mark> = marks.iter().filter(|m| m.label.is_some()).collect();
+    order.sort_by_key(|m| (m.at.1, m.at.0));
+    let mut placed = Vec::new();
+    for m in order {
+        let (text, color) = m.label.clone().expect("labelled");
+        let width = label_width(&text);
+        let prefer_left = m.at.0 - xs.0 > 7 * (xs.1 - xs.0) / 10;
+        let at = |left: bool, dx: i32, dy: i32| {
+            let top = m.at.1 + dy - LABEL_HEIGHT / 2;
+            let x = if left { m.at.0 - GAP - dx - width } else { m.at.0 + GAP + dx };
+            (x, top, x + width, top + LABEL_HEIGHT)
+        };
+        let inside = |b: (i32, i32, i32, i32)| b.0 >= xs.0 && b.2 <= xs.1 && b.1 >= ys.0 && b.3 <= ys.1;
+        // The nearest free place: beside the point, then a few pixels at a time up or down (so
+        // that a label fits between two others wherever they are), then further out.
+        let mut best: Option<(i32, bool, i32, i32)> = None;
+        'search: for dx in [0, 3 * GAP, 6 * GAP] {
+            for step in 0..=SHIFTS {
+                let shifts = if step == 0 { vec![0] } else { vec![-step * SHIFT, step * SHIFT] };
+                for dy in shifts {
+                    for left in [prefer_left, !prefer_left] {
+                        let b = at(left, dx, dy);
+                        if !inside(b) {
+                            continue;
+                        }
+                        let covered: i32 = taken.iter().map(|&t| overlap(b, t)).sum();
+                        if best.is_none_or(|(c, ..)| covered < c) {
+                            best = Some((covered, left, dx, dy));
+                        }
+                        if covered == 0 {
+                            break 'search;
+                        }
+                    }
+                }
+            }
+        }
+        let (_, left, dx, dy) = best.unwrap_or((0, prefer_left, 0, 0));
+        let area = at(left, dx, dy);
+        taken.push(area);
+        let leader = dx > 0 || dy.abs() > LABEL_HEIGHT / 2;
+        placed.push(Placed { text, color, point: m.at, area, left, leader });
+    }
+    placed
 }
 
 /// The legend band's columns and rows for `entries`: two columns when the labels fit.
@@ -341,8 +455,6 @@ fn chart(
     let entries: Vec<&Drawn> = drawn.iter().collect();
     let rows = legend_layout(&entries).1;
     let legend_height = if rows == 0 { 0 } else { rows * LEGEND_ROW + 15 };
-    let near_right = |x: f64| share_along(x, (x0, x1), log_x) > 0.7;
-
     let root = SVGBackend::new(path, (WIDTH, PLOT_HEIGHT + legend_height)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let (upper, lower) = root.split_vertically(PLOT_HEIGHT);
@@ -359,7 +471,7 @@ fn chart(
                 .y_label_formatter(&|v| tick(*v))
                 .draw()
                 .map_err(|e| fail(&e))?;
-            draw_series!(chart, &drawn, log_y, near_right, fail);
+            draw_series!(chart, root, &drawn, log_y, fail);
         }};
     }
     match (log_x, log_y) {
@@ -400,7 +512,6 @@ pub fn small_multiples(
     let Some(((x0, x1), (y0, y1))) = ranges(&all, (log_x, log_y)) else {
         return Err(format!("cannot draw {}: no range to plot", path.display()));
     };
-    let near_right = |x: f64| share_along(x, (x0, x1), log_x) > 0.7;
     let columns = if panels.len() <= 9 { panels.len().clamp(1, 3) } else { 4 };
     let rows = panels.len().div_ceil(columns).max(1);
     let width = (columns as u32 * PANEL.0).max(WIDTH);
@@ -439,7 +550,7 @@ pub fn small_multiples(
                     .y_label_formatter(&|v| tick(*v))
                     .draw()
                     .map_err(|e| fail(&e))?;
-                draw_series!(chart, drawn, log_y, near_right, fail);
+                draw_series!(chart, root, drawn, log_y, fail);
                 chart.backend_coord(&(x0, y0))
             }};
         }
@@ -881,6 +992,76 @@ mod tests {
         lines(&path, "t", "x", "y", &series, true).unwrap();
         let labels: Vec<String> = texts(&std::fs::read_to_string(&path).unwrap()).into_iter().map(|t| t.0).collect();
         assert!(labels.contains(&"exact".to_string()) && labels.contains(&"fast".to_string()), "{labels:?}");
+        std::fs::remove_file(path).ok();
+    }
+
+    /// The points' labels in an SVG file as boxes in pixels (left, top, right, bottom), as
+    /// [`place_labels`] reckons them, from their anchor and text; `names` says which texts are.
+    fn label_boxes(svg: &str, names: &[String]) -> Vec<(String, (i32, i32, i32, i32))> {
+        svg.split("<text")
+            .skip(1)
+            .filter_map(|chunk| {
+                let attribute = |name: &str| chunk.split(&format!("{name}=\"")).nth(1)?.split('"').next();
+                let body = chunk.split_once('>')?.1.split("</text>").next()?.trim().to_string();
+                if !names.contains(&body) {
+                    return None;
+                }
+                let (x, y): (i32, i32) = (attribute("x")?.parse().ok()?, attribute("y")?.parse().ok()?);
+                let width = label_width(&body);
+                let left = if attribute("text-anchor")? == "end" { x - width } else { x };
+                let top = y - LABEL_HEIGHT / 2;
+                Some((body, (left, top, left + width, top + LABEL_HEIGHT)))
+            })
+            .collect()
+    }
+
+    /// Kernels as `depo bench` draws them: a column of reference kernels at the axis' floor (two
+    /// of them 0.005 apart), pairs on top of each other, a cluster by the right edge. Every
+    /// label is drawn, none covers another or a marker, and each stays by its point.
+    #[test]
+    fn crowded_points_keep_their_labels_apart() {
+        let path = scratch("crowded");
+        let column = [1.13, 0.83, 0.75, 0.72, 0.6, 0.55, 0.545, 0.45, 0.40, 0.34, 0.2, 0.075, 0.07];
+        let named = |prefix: &str, n: usize| (0..n).map(|i| format!("{prefix} p=1.3 q=0.7 kernel {i}")).collect();
+        let cluster = [(1.5e-7, 0.88), (1.6e-7, 0.89), (4.7e-7, 0.91), (4.5e-7, 0.88), (1.7e-7, 0.885), (1.5e-7, 0.7)];
+        let series = [
+            Series::markers("reference", column.iter().map(|&y| (1e-17, y)).collect())
+                .with_labels(named("ref", column.len())),
+            Series::markers("pairs", vec![(8e-15, 0.13), (8.1e-15, 0.135), (9e-15, 0.54), (9e-15, 0.54)])
+                .with_labels(named("pair", 4)),
+            Series::markers("cluster", cluster.to_vec()).with_labels(named("f32", cluster.len())),
+        ];
+        lines(&path, "t", "x", "y", &series, true).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let names: Vec<String> = series.iter().flat_map(|s| s.labels.clone()).collect();
+        let boxes = label_boxes(&svg, &names);
+        assert_eq!(boxes.len(), names.len(), "{boxes:?}");
+        for (i, (a, box_a)) in boxes.iter().enumerate() {
+            for (b, box_b) in &boxes[i + 1..] {
+                assert_eq!(overlap(*box_a, *box_b), 0, "{a} {box_a:?} covers {b} {box_b:?}");
+            }
+        }
+        let circles: Vec<(i32, i32)> = svg
+            .split("<circle")
+            .skip(1)
+            .map(|c| {
+                let at = |name: &str| {
+                    c.split(&format!("{name}=\"")).nth(1).unwrap().split('"').next().unwrap().parse().unwrap()
+                };
+                (at("cx"), at("cy"))
+            })
+            .collect();
+        assert!(circles.len() >= 23, "{circles:?}");
+        for (name, b) in &boxes {
+            for &(x, y) in &circles {
+                assert_eq!(overlap(*b, (x - 4, y - 4, x + 4, y + 4)), 0, "{name} {b:?} covers the point at {x}, {y}");
+            }
+            let nearest = circles
+                .iter()
+                .map(|&(x, y)| (b.1 + b.3 - 2 * y).abs() / 2 + (x - b.0).abs().min((x - b.2).abs()))
+                .min();
+            assert!(nearest.unwrap() < 140, "{name} {b:?} far from every point");
+        }
         std::fs::remove_file(path).ok();
     }
 

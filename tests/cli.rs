@@ -282,6 +282,71 @@ fn bench_reports_ratio_and_error() {
         let error = row["max_error"].as_f64().unwrap();
         let f32_kernel = row["kernel"].as_str().unwrap().starts_with("f32");
         assert!(error < if f32_kernel { 1e-4 } else { 1e-12 }, "{row}");
+        // A reference kernel's error is zero by construction.
+        if row["reference"].as_bool().unwrap() {
+            assert!(!f32_kernel && error == 0.0, "{row}");
+        }
+    }
+    assert!(rows.iter().any(|r| r["reference"] == true) && rows.iter().any(|r| r["reference"] == false));
+}
+
+/// The kernels' table says `reference` where the error is zero by construction, not a
+/// measured `0.0e0`, and says why under the table.
+#[test]
+fn bench_names_the_reference_kernels() {
+    let table = ok_text(&["bench", "--n", "1000", "--reps", "1"]);
+    let kernels: Vec<&str> =
+        table.lines().skip(2).take_while(|l| l.starts_with("f64") || l.starts_with("f32")).collect();
+    assert!(kernels.len() > 20, "{table}");
+    for line in &kernels {
+        let reference = line.starts_with("f64") && !line.contains("fast-pow");
+        assert_eq!(line.ends_with(" reference"), reference, "{line}");
+    }
+    assert!(!table.contains("0.0e0") && table.contains("error 0 by construction"), "{table}");
+}
+
+/// The kernels' figure names every point, no label over another or a point (the reference
+/// kernels sit in a column at the axis' floor, which the legend explains).
+#[test]
+fn bench_figure_labels_every_point_apart() {
+    let dir = scratch("bench-figure");
+    let figure = dir.join("bench.svg");
+    let table = ok_text(&["bench", "--n", "1000", "--reps", "1", "--plot", figure.to_str().unwrap()]);
+    let kernels = table.lines().filter(|l| l.starts_with("f64") || l.starts_with("f32")).count();
+    let svg = std::fs::read_to_string(&figure).unwrap();
+    assert!(legend_y(&svg, "f64 reference kernels: error 0 by construction, drawn at 1e-17") > 500.0);
+    // Each point's label: its box from its anchor, about 5.2 pixels a character, 11 high.
+    let attribute = |chunk: &str, name: &str| -> i32 {
+        chunk.split(&format!(" {name}=\"")).nth(1).unwrap().split('"').next().unwrap().parse().unwrap()
+    };
+    let boxes: Vec<(String, [i32; 4])> = svg
+        .split("<text")
+        .skip(1)
+        .filter(|chunk| chunk.contains("font-size=\"8.87"))
+        .map(|chunk| {
+            let text = chunk.split_once('>').unwrap().1.split("</text>").next().unwrap().trim().to_string();
+            let (x, y) = (attribute(chunk, "x"), attribute(chunk, "y"));
+            let width = (text.chars().count() as f64 * 5.2).ceil() as i32;
+            let left = if chunk.contains("text-anchor=\"end\"") { x - width } else { x };
+            (text, [left, y - 5, left + width, y + 6])
+        })
+        .filter(|(_, b)| b[3] < 500)
+        .collect();
+    assert_eq!(boxes.len(), kernels, "a label per kernel: {boxes:?}");
+    let points: Vec<[i32; 4]> = svg
+        .split("<circle")
+        .skip(1)
+        .map(|c| (attribute(c, "cx"), attribute(c, "cy")))
+        .filter(|&(_, y)| y < 500)
+        .map(|(x, y)| [x - 4, y - 4, x + 4, y + 4])
+        .collect();
+    assert_eq!(points.len(), kernels);
+    let apart = |p: &[i32; 4], q: &[i32; 4]| p[2] <= q[0] || q[2] <= p[0] || p[3] <= q[1] || q[3] <= p[1];
+    for (i, (a, p)) in boxes.iter().enumerate() {
+        for (b, q) in &boxes[i + 1..] {
+            assert!(apart(p, q), "{a} {p:?} over {b} {q:?}");
+        }
+        assert!(points.iter().all(|q| apart(p, q)), "{a} {p:?} over a point");
     }
 }
 
@@ -742,6 +807,92 @@ fn room_decay_gives_no_z_without_deposits() {
     let line = release.lines().rev().find(|l| l.trim_start().starts_with("1.000")).unwrap();
     let cells: Vec<&str> = line.split_whitespace().collect();
     assert_eq!(&cells[1..5], ["<", cells[2], "[0]", "-"], "{line}");
+}
+
+/// The release table's shares: where no tracked particle ended in a place, the rule of three's
+/// 95 % upper bound 300/n % for n released with `[0]` (as the other room tables give a count of
+/// zero), never a `0.0` that reads as a measured share; `none` exhausted from a room nothing
+/// leaves. The table: a one-line heading, the header, a row per size, one legend line.
+#[test]
+fn release_shares_with_no_particle_give_a_bound() {
+    let dir = scratch("release-bounds");
+    let mirrors = dir.join("mirrors.toml");
+    std::fs::write(
+        &mirrors,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [ventilation]\nair_changes_per_hour = 10.0\n[walls.all]\nbehaviour = \"reflect\"\n\
+         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let closed = dir.join("closed.toml");
+    std::fs::write(
+        &closed,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6, 20e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    // The release table of `scene`: its lines up to the blank one after it.
+    let release = |scene: &std::path::Path| -> Vec<String> {
+        let text = ok_text(&["room", scene.to_str().unwrap(), "--no-plot"]);
+        let part = text.split("After the release at t = 0").nth(1).unwrap_or_else(|| panic!("{text}"));
+        part.lines().take_while(|l| !l.is_empty()).map(String::from).collect()
+    };
+    let bound = "< 1.5 [0]";
+    let table = release(&mirrors);
+    assert_eq!(table.len(), 4, "{table:?}");
+    assert!(table[0].len() < 110, "a one-line heading: {}", table[0]);
+    assert!(table[3].ends_with("room --help says more.") && table[3].len() < 200, "one legend line: {}", table[3]);
+    // Mirror walls: nothing on any surface, some exhausted, some airborne.
+    let row = &table[2];
+    assert_eq!(row.matches(bound).count(), 3, "floor, ceiling, walls: {row}");
+    let json = ok_json(&["room", mirrors.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    let shares = &json["sizes"][0]["release"];
+    for fate in ["exhausted", "airborne"] {
+        let share = 100.0 * shares[fate]["share"].as_f64().unwrap();
+        assert!(share > 0.0 && row.contains(&format!(" {share:.1} ")), "{fate} {share:.1} in {row}");
+    }
+    assert!(!row.split_whitespace().any(|c| c == "0.0"), "{row}");
+    // A closed room: exhausted is none by construction; at 1 um nothing deposits in 120 s.
+    let table = release(&closed);
+    assert_eq!(table.len(), 5, "{table:?}");
+    for row in &table[2..4] {
+        assert!(row.contains(" none ") && !row.split_whitespace().any(|c| c == "0.0"), "{row}");
+    }
+    assert_eq!(table[2].matches(bound).count(), 3, "{}", table[2]);
+    assert!(table[2].contains(" 100.0 "), "all airborne: {}", table[2]);
+    let help = ok_text(&["room", "--help"]);
+    assert!(help.contains("least-squares slope of ln N(t)") && help.contains("300/n"), "{help}");
+}
+
+/// A size with no deposit event in the window: the first table gives `beta` as its 95 % upper
+/// bound with `[0]` and the ratio to Lai & Nazaroff's as a bound, never `0.00e0 +- 0.0e0` and
+/// a ratio of 0.00.
+#[test]
+fn a_beta_with_no_deposit_gives_its_bound() {
+    let dir = scratch("beta-bound");
+    let scene = dir.join("closed.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6, 20e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let path = scene.to_str().unwrap();
+    let json = ok_json(&["room", path, "--format", "json", "--no-plot"]);
+    let beta = &json["sizes"][0]["beta_per_hour"];
+    assert_eq!(beta["events"], 0, "{beta}");
+    let bound = beta["upper_bound"].as_f64().unwrap();
+    let model = json["sizes"][0]["lai_nazaroff"]["beta_per_hour"].as_f64().unwrap();
+    let text = ok_text(&["room", path, "--no-plot"]);
+    let row = text.lines().find(|l| l.trim_start().starts_with("1.000")).unwrap();
+    assert!(row.contains(&format!("< {bound:.2e} [0]")), "{row}");
+    assert!(row.contains(&format!("< {:.2}", bound / model)), "{row}");
+    assert!(!row.contains("0.00e0") && !row.split_whitespace().any(|c| c == "0.00"), "{row}");
+    // The 20 um size, with deposits, keeps its figure and ratio.
+    let twenty = &json["sizes"][1]["beta_per_hour"];
+    let ratio = twenty["value"].as_f64().unwrap() / json["sizes"][1]["lai_nazaroff"]["beta_per_hour"].as_f64().unwrap();
+    let row = text.lines().find(|l| l.trim_start().starts_with("20.000")).unwrap();
+    assert!(row.contains(&format!(" {ratio:.2} ")), "{ratio:.2} in {row}");
 }
 
 #[test]

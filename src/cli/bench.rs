@@ -60,7 +60,11 @@ struct Row {
     ceiling_impacts_per_second: f64,
     fraction_of_ceiling: f64,
     gigabytes_per_second: f64,
+    /// The largest error against the reference; 0 for a reference kernel itself.
     max_error: f64,
+    /// Whether this kernel is its own reference (the f64 kernel with libm's pow, or one with
+    /// exponents 1 and 1/2, which take no pow): its error is zero by construction.
+    reference: bool,
 }
 
 pub fn run(args: &BenchArgs) -> Result<(), Error> {
@@ -99,6 +103,7 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
             fraction_of_ceiling: m.fraction(),
             gigabytes_per_second: m.rate() * m.bytes_per_impact() as f64 / 1e9,
             max_error: error_against_reference(scenario, args.n.min(200_000)),
+            reference: scenario.is_reference(),
         });
         progress.inc(1);
     }
@@ -119,42 +124,46 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
             );
             for r in &rows {
                 out!(
-                    "{:<30} {:>11.0} {:>11.0} {:>9.2} {:>7.1} {:>10.1e}",
+                    "{:<30} {:>11.0} {:>11.0} {:>9.2} {:>7.1} {:>10}",
                     r.kernel,
                     r.impacts_per_second / 1e6,
                     r.ceiling_impacts_per_second / 1e6,
                     r.fraction_of_ceiling,
                     r.gigabytes_per_second,
-                    r.max_error
+                    if r.reference { "reference".to_string() } else { format!("{:.1e}", r.max_error) }
+                );
+            }
+            if rows.iter().any(|r| r.reference) {
+                out!(
+                    "max error: the largest |V - V_ref| / |v| against the f64 libm-pow kernel of the same setup; \
+                     reference: that kernel, or one computing the same (exponents 1 and 1/2 take no pow), error 0 by \
+                     construction."
                 );
             }
         }
     }
     if let Some(path) = &args.plot {
-        // Run time against error: each kernel a point (error floored at 1e-17 for the log axis),
-        // one series per precision and power function; the table names each point.
-        let groups = [
-            ("f64, exponents 1 and 1/2", "f64", false),
-            ("f64, general exponents", "f64", true),
-            ("f32, exponents 1 and 1/2", "f32", false),
-            ("f32, general exponents", "f32", true),
-        ];
-        let series: Vec<Series> = groups
+        // Speed against error: each kernel a point, named beside it; one series per precision
+        // and power function. The reference kernels have no error to put on the log axis: they
+        // are drawn at its floor, in a series of their own whose legend entry says so.
+        let reference = format!("f64 reference kernels: error 0 by construction, drawn at {EXACT_AT:.0e}");
+        let names = [reference.as_str(), "f64, fast pow", "f32, exponents 1 and 1/2", "f32, general exponents"];
+        // Which of `names` a kernel's series is.
+        let group = |r: &Row| match (r.kernel.starts_with("f32"), r.reference, r.kernel.contains("pow")) {
+            (false, true, _) => 0,
+            (false, false, _) => 1,
+            (true, _, false) => 2,
+            (true, _, true) => 3,
+        };
+        let series: Vec<Series> = names
             .iter()
-            .map(|&(name, precision, general)| {
-                let own: Vec<&Row> = rows
-                    .iter()
-                    .filter(|r| r.kernel.starts_with(precision) && r.kernel.contains("pow") == general)
-                    .collect();
-                // A kernel that reproduces the reference exactly has no error to put on the
-                // log axis: drawn at the floor, and the legend says so.
-                let exact = own.iter().filter(|r| r.max_error < EXACT_AT).count();
-                let name = match exact {
-                    0 => name.to_string(),
-                    n => format!("{name} ({n} with error 0, drawn at {EXACT_AT:.0e})"),
-                };
+            .enumerate()
+            .map(|(k, &name)| {
+                let own: Vec<&Row> = rows.iter().filter(|r| group(r) == k).collect();
+                let precision = if k < 2 { "f64" } else { "f32" };
                 Series::markers(name, own.iter().map(|r| (r.max_error.max(EXACT_AT), r.fraction_of_ceiling)).collect())
                     .with_labels(own.iter().map(|r| short_label(&r.kernel, precision)).collect())
+                    .color(k)
             })
             .filter(|s| !s.points.is_empty())
             .collect();
@@ -163,7 +172,8 @@ pub fn run(args: &BenchArgs) -> Result<(), Error> {
     Ok(())
 }
 
-/// Where the kernels figure draws an error of 0 (below any rounding error of an f64 result).
+/// Where the kernels figure draws the reference kernels' error of 0 (below any rounding error
+/// of an f64 result); their legend entry names it.
 const EXACT_AT: f64 = 1e-17;
 
 /// A kernel's label beside its point: without the precision its series names.
@@ -263,12 +273,11 @@ fn integrators(args: &BenchArgs) -> Result<(), Error> {
                     1 => format!("{scheme} (1 unstable step size not shown)"),
                     n => format!("{scheme} ({n} unstable step sizes not shown)"),
                 };
-                let name = if *scheme == "euler" { format!("{name}, at the same dt/tau") } else { name };
-                // Each point's dt / tau, written once: Euler runs at the exponential's steps, its
-                // points beside theirs.
+                // Each point's dt / tau beside it, in both series: the two schemes' points at one
+                // step need not sit side by side.
                 let labels = runs
                     .iter()
-                    .filter(|r| r.relative_error.is_some() && *scheme == "exponential")
+                    .filter(|r| r.relative_error.is_some())
                     .map(|r| format!("dt/tau {:.2}", r.dt_over_tau))
                     .collect();
                 Series::markers(name, points).with_labels(labels)

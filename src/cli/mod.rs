@@ -67,9 +67,17 @@ enum Command {
     /// release from t = 0 (what became of it, not a well-mixed room's rates; v_d over the window
     /// does not exist, nothing being airborne there), its decay fitted from t = 0 (^ in the
     /// second table), and the times by which half and 90 % had deposited are in the second
-    /// table. The second table reads the release as a decay experiment; its curve counts the
-    /// tracked particles, which leave the air by their own deposits: where deposition is rare
-    /// it resolves beta far less well than the study's excursions. The third table is the steady
+    /// table. The second table reads the release as a decay experiment: beta fitted is the
+    /// least-squares slope of ln N(t) over the window (from the averages' start while at least 50
+    /// particles are airborne) less the exchange rate a, [n] the deposits in the window, ? fewer
+    /// than 10, with none < its 95 % upper bound; z is the fitted beta less the study's over the
+    /// standard error of that difference, paired over the particles both rest on (- where either
+    /// has no event or no error). Its curve counts the tracked particles, which leave the air by
+    /// their own deposits: where deposition is rare it resolves beta far less well than the
+    /// study's excursions. Then where the released particles are at the end, in % of the number
+    /// (for one size the same share of the mass): where none ended in a place, < 300/n [0], the
+    /// rule of three's 95 % upper bound for n released; "none" exhausted where nothing can leave
+    /// the room; and the floor's loading in ug/m^2 per mg released. The third table is the steady
     /// state under a continuous source entering where a scene's [source] says (indoor,
     /// infiltration or a supply opening; examples/room.toml), from its release followed from
     /// t = 0: the mean time in the air (the steady airborne number per particle emitted an

@@ -125,7 +125,7 @@ pub fn table(r: &RoomResult) -> String {
         let method = if r.averaged_from_s == 0.0 && study.transient > 0.0 { format!("{method} +") } else { method };
         outln!(
             o,
-            "{:>8.3}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>9.3} {:>6.2} {:>10}{}  {method}",
+            "{:>8.3}  {:>27} {:>9}  {:>27} {:>9}  {:>27} {:>9}  {:>20} {:>9.3} {:>6} {:>10}{}  {method}",
             r.diameter_um,
             cell(r, "floor", &r.floor),
             model_cell(r.lai_nazaroff.floor),
@@ -133,9 +133,9 @@ pub fn table(r: &RoomResult) -> String {
             model_cell(r.lai_nazaroff.ceiling),
             cell(r, "walls", &r.walls),
             model_cell(r.lai_nazaroff.walls),
-            rate_cell(&r.beta_per_hour),
+            beta_cell(&r.beta_per_hour),
             r.lai_nazaroff.beta_per_hour,
-            r.beta_per_hour.value / r.lai_nazaroff.beta_per_hour,
+            ratio_cell(&r.beta_per_hour, r.lai_nazaroff.beta_per_hour),
             near_floor_cell(r),
             r.indoor_outdoor
                 .as_ref()
@@ -290,6 +290,21 @@ fn heading_number(x: f64) -> String {
 /// its delta-method error is itself uncertain.
 const FEW_DEPOSITS: usize = 10;
 
+/// A share of the release in % in the decay table: `95.5` (a share below 0.1 % to one
+/// significant figure, never a `0.0` that reads as none); where no tracked particle ended
+/// there, `< b [0]`: the 95 % upper bound on a binomial share with no event in `released`
+/// trials by the rule of three, 300 / n % (as the furnishings' table bounds its shares).
+fn release_cell(s: &Share, released: usize) -> String {
+    let percent = 100.0 * s.share;
+    if s.count == 0 {
+        format!("< {} [0]", significant(300.0 / released.max(1) as f64, 2))
+    } else if percent < 0.1 {
+        significant(percent, 1)
+    } else {
+        format!("{percent:.1}")
+    }
+}
+
 /// The fitted `beta` per hour: `value +- error [deposits]`, flagged `?` with fewer than
 /// [`FEW_DEPOSITS`], or `< bound [0]` (the 95 % upper bound) with none.
 fn fitted_cell(m: &Measured) -> String {
@@ -306,17 +321,12 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
     outln!(o, "");
     outln!(
         o,
-        "After the release at t = 0, as a decay experiment reads it: beta fitted = the least-squares slope of ln N(t) \
-         over the window (from the averages' start while >= {MIN_AIRBORNE} particles are airborne), less a = {} /h, \
-         [deposits in the window], ? fewer than {FEW_DEPOSITS}; z = (fitted - beta) / the standard error of that \
-         difference, paired over the particles both rest on (- where either has no event or no error). Then where the released \
-         particles are at the end, % of the number (for one size also of the mass), and the floor's loading per mg \
-         released.",
+        "After the release at t = 0: its decay fitted (beta less a = {} /h), and where the particles are at the end:",
         heading_number(ach)
     );
     outln!(
         o,
-        "{:>8}  {:>28} {:>6} {:>12}  {:>9} {:>9} {:>9}{} {:>11} {:>10}  {:>20}  {:>28}",
+        "{:>8}  {:>28} {:>6} {:>12}  {:>12} {:>12} {:>12}{} {:>12} {:>12}  {:>20}  {:>28}",
         "d (um)",
         "beta fitted (1/h)",
         "z",
@@ -354,10 +364,12 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
             },
         };
         let release = &r.release;
-        let pct = |s: &Share| format!("{:.1}", 100.0 * s.share);
+        let pct = |s: &Share| release_cell(s, release.particles);
+        // Nothing leaves a room with no exchange and no recirculation filter: exactly none.
+        let exhaust = ach > 0.0 || r.filter_removal_per_hour.is_some_and(|f| f > 0.0);
         outln!(
             o,
-            "{:>8.3}  {:>28} {:>6} {:>12}  {:>9} {:>9} {:>9}{} {:>11} {:>10}  {:>20}  {:>28}",
+            "{:>8.3}  {:>28} {:>6} {:>12}  {:>12} {:>12} {:>12}{} {:>12} {:>12}  {:>20}  {:>28}",
             r.diameter_um,
             fitted,
             z,
@@ -366,7 +378,7 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
             pct(&release.ceiling),
             pct(&release.walls),
             release.furnishings.as_ref().map_or(String::new(), |s| format!(" {:>13}", pct(s))),
-            pct(&release.exhausted),
+            if exhaust { pct(&release.exhausted) } else { "none".to_string() },
             pct(&release.airborne),
             // kg/m^2 per kg released, for 1 mg released, in ug/m^2; none deposited, "-".
             release.floor.loading_per_m2.filter(|&l| l > 0.0).map_or("-".to_string(), |l| format!("{:.3e}", l * 1e3)),
@@ -374,7 +386,12 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
         );
     }
     // One legend line; room --help says more.
-    let mut legend = vec![format!("? fewer than {FEW_DEPOSITS} deposits"), "- none".to_string()];
+    let mut legend = vec![
+        format!("[n] deposits in the window, ? fewer than {FEW_DEPOSITS}"),
+        "z: (fitted - beta) / paired s.e.".to_string(),
+        "% of the number released, < 95 % bound [0]".to_string(),
+        "- none".to_string(),
+    ];
     if rows.iter().any(|r| r.release_fit.is_some()) {
         legend.push(format!(
             "^ gone before the window: fitted from t = 0 while {MIN_AIRBORNE} airborne (how fast, not a well-mixed rate)"
@@ -563,6 +580,15 @@ impl DistributionReport {
             "+- 1 s.e.; (x) bound on the error of one run per bin (? no neighbour); PM2.5, PM10: aerodynamic \
              diameter below 2.5, 10 um; beta of mass: its deposition loss rate; room --help says more."
         );
+    }
+}
+
+/// `beta` over Lai & Nazaroff's `model` to two decimals; with no deposit event, its 95 %
+/// upper bound's ratio, `< 3.94`, never a ratio of 0.
+fn ratio_cell(beta: &Measured, model: f64) -> String {
+    match beta.upper_bound {
+        Some(bound) => format!("< {:.2}", bound / model),
+        None => format!("{:.2}", beta.value / model),
     }
 }
 
