@@ -864,6 +864,29 @@ fn release_shares_with_no_particle_give_a_bound() {
     assert!(help.contains("least-squares slope of ln N(t)") && help.contains("300/n"), "{help}");
 }
 
+/// The steady state of a ventilated room whose walls reflect: no particle reaches a surface,
+/// so the floor, ceiling and walls get the rule of three's bound (`< 300/n [0]` %), a room with
+/// no furnishings gets `none` for them, and the exhaust takes the whole source; never a `0.0`
+/// that reads as a measured none.
+#[test]
+fn steady_shares_with_no_particle_give_a_bound() {
+    let scene = scratch("steady-bounds").join("mirrors.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [ventilation]\nair_changes_per_hour = 10.0\n[walls.all]\nbehaviour = \"reflect\"\n\
+         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let text = ok_text(&["room", scene.to_str().unwrap(), "--no-plot"]);
+    let part = text.split("Steady state under a continuous source").nth(1).unwrap_or_else(|| panic!("{text}"));
+    let row = part.lines().find(|l| l.trim_start().starts_with("1.000")).unwrap_or_else(|| panic!("{part}"));
+    assert_eq!(row.matches("< 1.5 [0]").count(), 3, "floor, ceiling, walls: {row}");
+    assert!(row.contains(" none "), "no furnishings: {row}");
+    assert!(row.contains(" 100.0 "), "all exhausted: {row}");
+    assert!(!row.split_whitespace().any(|c| c == "0.0"), "{row}");
+}
+
 /// A size with no deposit event in the window: the first table gives `beta` as its 95 % upper
 /// bound with `[0]` and the ratio to Lai & Nazaroff's as a bound, never `0.00e0 +- 0.0e0` and
 /// a ratio of 0.00.

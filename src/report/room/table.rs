@@ -417,7 +417,7 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
     let ventilated = rows.iter().any(|r| r.steady.as_ref().is_some_and(|s| s.indoor_outdoor.is_some()));
     outln!(
         o,
-        "{:>8}  {:>18}  {:>27} {:>27} {:>27}  {:>7} {:>9} {:>7} {:>9} {:>11} {:>8} {:>12}{}",
+        "{:>8}  {:>18}  {:>27} {:>27} {:>27}  {:>11} {:>11} {:>11} {:>11} {:>11} {:>8} {:>13}{}",
         "d (um)",
         "time in air (h)",
         "floor (m/s)",
@@ -438,10 +438,14 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
             outln!(o, "{:>8.3}  nothing removes these particles: no steady state", r.diameter_um);
             continue;
         };
-        let pct = |x: f64| format!("{:.1}", 100.0 * x);
+        let pct = |x: f64| steady_share_cell(x, r.release.particles);
+        // A fate the scene has no means to reach is none by construction, not a bound.
+        let furnished = !study.scene.furnishings.is_empty();
+        let exhaust = study.scene.exchange_rate() > 0.0 || r.filter_removal_per_hour.is_some_and(|f| f > 0.0);
+        let possible = |can: bool, x: f64| if can { pct(x) } else { "none".to_string() };
         outln!(
             o,
-            "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>7} {:>9} {:>7} {:>9} {:>11} {:>8} {:>12}{}",
+            "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>11} {:>11} {:>11} {:>11} {:>11} {:>8} {:>13}{}",
             r.diameter_um,
             format!("{:.3} +- {:.3}", st.residence_h.value, st.residence_h.error),
             st.floor_velocity.cell(),
@@ -450,8 +454,8 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
             pct(st.floor),
             pct(st.ceiling),
             pct(st.walls),
-            pct(st.furnishings),
-            pct(st.exhausted),
+            possible(furnished, st.furnishings),
+            possible(exhaust, st.exhausted),
             pct(st.beyond_run),
             format!("{:.2} +- {:.2}", st.near_floor_over_mean.value, st.near_floor_over_mean.error),
             st.indoor_outdoor
@@ -462,9 +466,26 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
     // One legend line; room --help and docs/commands.md say more.
     outln!(
         o,
-        "time in air: airborne number per particle emitted an hour; % of the source; beyond %: of the time in air \
+        "time in air: airborne number per particle emitted an hour; % of the source, < 95 % bound [0], none: no way \
+         there; beyond %: of the time in air \
          from past the run; near floor: lowest tenth of the height over the mean; room --help says more."
     );
+}
+
+/// A share of the steady source in %: `95.5` (below 0.1 % to one significant figure); a
+/// share of exactly 0 means that none of the `released` particles the steady state is drawn
+/// from ended there and no late rate leads there, and gets the rule of three's 95 % upper
+/// bound, `< 300 / n [0]` (as the release table bounds its shares), never a `0.0` that
+/// reads as a measured none.
+fn steady_share_cell(share: f64, released: usize) -> String {
+    let percent = 100.0 * share;
+    if share == 0.0 {
+        format!("< {} [0]", significant(300.0 / released.max(1) as f64, 2))
+    } else if percent < 0.1 {
+        significant(percent, 1)
+    } else {
+        format!("{percent:.1}")
+    }
 }
 
 /// The near-floor concentration over the mean under a source spread over the room, `1.02`,
