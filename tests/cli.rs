@@ -885,6 +885,18 @@ fn steady_shares_with_no_particle_give_a_bound() {
     assert!(row.contains(" none "), "no furnishings: {row}");
     assert!(row.contains(" 100.0 "), "all exhausted: {row}");
     assert!(!row.split_whitespace().any(|c| c == "0.0"), "{row}");
+    // The first table's C_in/C_out from a beta with no deposit: the range from beta's 95 %
+    // bound to no deposition, a/(a + bound) to 1, not a measured-looking 1.000 +- 0.000.
+    let first = text.lines().find(|l| l.trim_start().starts_with("1.000")).unwrap();
+    assert!(!first.contains("+- 0.000"), "{first}");
+    let range =
+        first.split_whitespace().find(|c| c.contains('-') && c.starts_with("0.")).unwrap_or_else(|| panic!("{first}"));
+    let (low, high) = range.split_once('-').unwrap();
+    let json = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"]);
+    let bound_per_hour = json["sizes"][0]["beta_per_hour"]["upper_bound"].as_f64().unwrap();
+    let low: f64 = low.parse().unwrap();
+    assert!((low - 10.0 / (10.0 + bound_per_hour)).abs() < 1e-3, "a / (a + bound) with a = 10/h: {first}");
+    assert_eq!(high, "1.000", "{first}");
 }
 
 /// A size with no deposit event in the window: the first table gives `beta` as its 95 % upper

@@ -137,9 +137,7 @@ pub fn table(r: &RoomResult) -> String {
             r.lai_nazaroff.beta_per_hour,
             ratio_cell(&r.beta_per_hour, r.lai_nazaroff.beta_per_hour),
             near_floor_cell(r),
-            r.indoor_outdoor
-                .as_ref()
-                .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
+            r.indoor_outdoor.as_ref().map_or(String::new(), |m| format!("  {:>18}", indoor_outdoor_cell(r, m, study)))
         );
     }
     // The four walls apart where they can differ: in material, or in the openings' flow.
@@ -158,6 +156,9 @@ pub fn table(r: &RoomResult) -> String {
     }
     if rows.iter().any(|r| r.well_mixed == Some(false)) {
         legend.push(format!("~ not well mixed (near floor above {NOT_WELL_MIXED})"));
+    }
+    if rows.iter().any(|r| r.indoor_outdoor.is_some() && r.beta_per_hour.upper_bound.is_some()) {
+        legend.push("C_in/C_out a-b [0]: from beta's bound to no deposition".into());
     }
     if rows.iter().any(|r| r.averaged_from_s == 0.0) && study.transient > 0.0 {
         legend.push("+ all gone before the window: from t = 0".into());
@@ -601,6 +602,26 @@ impl DistributionReport {
             "+- 1 s.e.; (x) bound on the error of one run per bin (? no neighbour); PM2.5, PM10: aerodynamic \
              diameter below 2.5, 10 um; beta of mass: its deposition loss rate; room --help says more."
         );
+    }
+}
+
+/// The steady `C_in/C_out` from the release's `beta`: `value +- error`; where `beta` rests on
+/// no deposit, the range it spans from `beta`'s 95 % upper bound to no deposition,
+/// `low-high [0]`, never a `1.000 +- 0.000` that reads as measured.
+fn indoor_outdoor_cell(r: &Row, m: &Measured, study: &RoomStudy) -> String {
+    match r.beta_per_hour.upper_bound {
+        None => format!("{:.3} +- {:.3}", m.value, m.error),
+        Some(bound) => {
+            let ratio = |beta: f64| {
+                study.filtration.indoor_outdoor(
+                    r.diameter_um * 1e-6,
+                    study.scene.exchange_rate(),
+                    study.penetration,
+                    beta,
+                )
+            };
+            format!("{:.3}-{:.3} [0]", ratio(bound / 3600.0), ratio(0.0))
+        }
     }
 }
 
