@@ -897,6 +897,12 @@ fn steady_shares_with_no_particle_give_a_bound() {
     let low: f64 = low.parse().unwrap();
     assert!((low - 10.0 / (10.0 + bound_per_hour)).abs() < 1e-3, "a / (a + bound) with a = 10/h: {first}");
     assert_eq!(high, "1.000", "{first}");
+    // The figure draws that range as a bar of its own series, not a measured point at 1.
+    let plots = scratch("steady-bounds-plots");
+    ok_text(&["room", scene.to_str().unwrap(), "--plot", plots.to_str().unwrap()]);
+    let svg = std::fs::read_to_string(plots.join("room-indoor-outdoor.svg")).unwrap();
+    assert!(svg.contains("no deposit, the bar from beta"), "the range's legend");
+    assert!(!svg.contains("(depo, +- 1 s.e.)"), "no measured point where beta has no deposit");
 }
 
 /// A size with no deposit event in the window: the first table gives `beta` as its 95 % upper

@@ -19,6 +19,10 @@ use crate::Error;
 /// What a figure reads off a class's split: a value and its standard error.
 type Pick<'a> = &'a dyn Fn(&Split) -> (f64, f64);
 
+/// The palette's grey: the indoor/outdoor ranges of sizes without a deposit, apart from the
+/// measured points' colours.
+const NO_DEPOSIT_COLOR: usize = 7;
+
 /// Writes the figures and maps of `r` into `dir` (which must exist), telling `note` a line for
 /// each group of files written, as `depo room` prints them.
 pub fn figures(dir: &Path, r: &RoomResult, note: &mut dyn FnMut(String)) -> Result<(), Error> {
@@ -160,24 +164,40 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
     let indoor_outdoor = dir.join("room-indoor-outdoor.svg");
     let ventilated = rows.iter().any(|r| r.indoor_outdoor.is_some());
     if ventilated {
-        let series: Vec<Series> = first_seen(rows.iter().map(|r| r.density))
-            .into_iter()
-            .enumerate()
-            .map(|(k, rho)| {
-                let own: Vec<(f64, &Measured)> = rows
-                    .iter()
-                    .filter(|r| r.density == rho)
-                    .filter_map(|r| r.indoor_outdoor.as_ref().map(|m| (r.diameter_um, m)))
-                    .collect();
-                let of = density_label(rows, rho, ", ", " kg/m^3");
-                Series::markers(
-                    format!("C_in / C_out{of} (depo, +- 1 s.e.)"),
-                    own.iter().map(|(d, m)| (*d, m.value)).collect(),
-                )
-                .with_errors(own.iter().map(|(_, m)| m.error).collect())
-                .color(k)
-            })
-            .collect();
+        let mut series = Vec::new();
+        for (k, rho) in first_seen(rows.iter().map(|r| r.density)).into_iter().enumerate() {
+            let of = density_label(rows, rho, ", ", " kg/m^3");
+            let own: Vec<&Row> = rows.iter().filter(|r| r.density == rho && r.indoor_outdoor.is_some()).collect();
+            // Measured where beta was; where it rests on no deposit, the range it spans drawn
+            // as a bar from its low to its high end (no measured point to mark).
+            let (bounded, measured): (Vec<&Row>, Vec<&Row>) =
+                own.into_iter().partition(|r| r.indoor_outdoor_range(study).is_some());
+            let measured: Vec<(f64, &Measured)> =
+                measured.iter().filter_map(|r| r.indoor_outdoor.as_ref().map(|m| (r.diameter_um, m))).collect();
+            if !measured.is_empty() {
+                series.push(
+                    Series::markers(
+                        format!("C_in / C_out{of} (depo, +- 1 s.e.)"),
+                        measured.iter().map(|(d, m)| (*d, m.value)).collect(),
+                    )
+                    .with_errors(measured.iter().map(|(_, m)| m.error).collect())
+                    .color(k),
+                );
+            }
+            let ranges: Vec<(f64, (f64, f64))> =
+                bounded.iter().filter_map(|r| r.indoor_outdoor_range(study).map(|x| (r.diameter_um, x))).collect();
+            if !ranges.is_empty() {
+                // The bar spans the range: centred, half its width either side.
+                series.push(
+                    Series::markers(
+                        format!("C_in / C_out{of}: no deposit, the bar from beta's 95 % bound to no deposition"),
+                        ranges.iter().map(|(d, (low, high))| (*d, 0.5 * (low + high))).collect(),
+                    )
+                    .with_errors(ranges.iter().map(|(_, (low, high))| 0.5 * (high - low)).collect())
+                    .color(NO_DEPOSIT_COLOR + k),
+                );
+            }
+        }
         plot::lines(
             &indoor_outdoor,
             "Indoor/outdoor concentration ratio at steady state",

@@ -152,6 +152,26 @@ pub struct SurfaceMap {
     pub cells: Vec<Vec<u32>>,
 }
 
+impl Row {
+    /// Where `beta` rests on no deposit (only its 95 % upper bound is known) and the room is
+    /// ventilated: the steady `C_in/C_out` it spans, from the bound's (low) to no
+    /// deposition's (high). `None` where `beta` was measured or there is no ratio.
+    #[must_use]
+    pub fn indoor_outdoor_range(&self, study: &RoomStudy) -> Option<(f64, f64)> {
+        let bound = self.beta_per_hour.upper_bound?;
+        self.indoor_outdoor.as_ref()?;
+        let ratio = |beta: f64| {
+            study.filtration.indoor_outdoor(
+                self.diameter_um * 1e-6,
+                study.scene.exchange_rate(),
+                study.penetration,
+                beta,
+            )
+        };
+        Some((ratio(bound / 3600.0), ratio(0.0)))
+    }
+}
+
 /// Serialises `cells` with each row as one compact JSON array, so that the pretty-printed
 /// report gives a row a line rather than every cell a line of its own.
 pub fn rows_on_one_line<S: serde::Serializer>(cells: &[Vec<u32>], s: S) -> Result<S::Ok, S::Error> {

@@ -606,22 +606,12 @@ impl DistributionReport {
 }
 
 /// The steady `C_in/C_out` from the release's `beta`: `value +- error`; where `beta` rests on
-/// no deposit, the range it spans from `beta`'s 95 % upper bound to no deposition,
-/// `low-high [0]`, never a `1.000 +- 0.000` that reads as measured.
+/// no deposit, the range it spans ([`Row::indoor_outdoor_range`]), `low-high [0]`, never a
+/// `1.000 +- 0.000` that reads as measured.
 fn indoor_outdoor_cell(r: &Row, m: &Measured, study: &RoomStudy) -> String {
-    match r.beta_per_hour.upper_bound {
+    match r.indoor_outdoor_range(study) {
         None => format!("{:.3} +- {:.3}", m.value, m.error),
-        Some(bound) => {
-            let ratio = |beta: f64| {
-                study.filtration.indoor_outdoor(
-                    r.diameter_um * 1e-6,
-                    study.scene.exchange_rate(),
-                    study.penetration,
-                    beta,
-                )
-            };
-            format!("{:.3}-{:.3} [0]", ratio(bound / 3600.0), ratio(0.0))
-        }
+        Some((low, high)) => format!("{low:.3}-{high:.3} [0]"),
     }
 }
 
