@@ -474,9 +474,11 @@ fn chart(
             draw_series!(chart, root, &drawn, log_y, fail);
         }};
     }
+    let (labelled, light) = log_ticks(x0, x1);
+    let log_x_axis = || (x0..x1).log_scale().with_key_points(labelled.clone()).with_light_points(light.clone());
     match (log_x, log_y) {
-        (true, true) => draw!(builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())),
-        (true, false) => draw!(builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1)),
+        (true, true) => draw!(builder.build_cartesian_2d(log_x_axis(), (y0..y1).log_scale())),
+        (true, false) => draw!(builder.build_cartesian_2d(log_x_axis(), y0..y1)),
         (false, true) => draw!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())),
         (false, false) => draw!(builder.build_cartesian_2d(x0..x1, y0..y1)),
     }
@@ -905,6 +907,40 @@ fn log_scaling(x0: f64, log: bool) -> f64 {
     }
 }
 
+/// A log axis's ticks over `[lo, hi]`, `(labelled, light)`: labelled at every whole mantissa
+/// 1-9 of each power of ten where the axis spans up to two and a half decades, at 1, 2 and 5
+/// up to five decades, at the powers of ten beyond; a light line at the other whole
+/// mantissas. So the axis's first tick, within its first decade, carries a label (the
+/// default's ticks left a 0.3-0.9 stretch bare and crowded light lines between its own);
+/// where fewer than two ticks would be labelled, its two ends are.
+fn log_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
+    let decades = (hi / lo).log10();
+    let labelled: &[u32] = if decades <= 2.5 {
+        &[1, 2, 3, 4, 5, 6, 7, 8, 9]
+    } else if decades <= 5.0 {
+        &[1, 2, 5]
+    } else {
+        &[1]
+    };
+    let (mut bold, mut light) = (Vec::new(), Vec::new());
+    for e in lo.log10().floor() as i32..=hi.log10().ceil() as i32 {
+        for m in 1..=9u32 {
+            let v = f64::from(m) * 10f64.powi(e);
+            if (lo..=hi).contains(&v) {
+                if labelled.contains(&m) {
+                    bold.push(v)
+                } else {
+                    light.push(v)
+                }
+            }
+        }
+    }
+    if bold.len() < 2 {
+        bold = vec![lo, hi];
+    }
+    (bold, light)
+}
+
 /// A tick label: plain for moderate values, otherwise in e-notation with the rounding noise of
 /// log-scale tick positions (`9.999999e-5`) removed.
 fn tick(v: f64) -> String {
@@ -966,6 +1002,27 @@ mod tests {
         for decade in ["0.01", "0.1", "1", "10"] {
             assert!(labels.contains(&decade.to_string()), "{decade} in {labels:?}");
         }
+        std::fs::remove_file(path).ok();
+    }
+
+    /// Sizes from 0.3 to 20 um, a room study's: less than two decades, so every whole
+    /// mantissa is labelled, the axis's first (0.3, below the first power of ten) too, and no
+    /// light line crowds between them (each light line at a whole mantissa, none labelled).
+    #[test]
+    fn a_log_axis_within_two_decades_labels_its_first_tick() {
+        let path = scratch("sizes");
+        let series = [Series::markers("beta", vec![(0.3, 0.5), (1.0, 0.2), (20.0, 70.0)])];
+        log_log(&path, "t", "x", "y", &series).unwrap();
+        let labels: Vec<String> = texts(&std::fs::read_to_string(&path).unwrap()).into_iter().map(|t| t.0).collect();
+        for tick in ["0.3", "0.5", "1", "2", "5", "10", "20"] {
+            assert!(labels.contains(&tick.to_string()), "{tick} in {labels:?}");
+        }
+        let (labelled, light) = log_ticks(0.3 / 1.1, 20.0 * 1.1);
+        assert_eq!(labelled.len(), 7 + 9 + 2, "0.3-0.9, 1-9, 10 and 20: {labelled:?}");
+        assert!(light.is_empty(), "{light:?}");
+        let (labelled, light) = log_ticks(0.009, 11.0);
+        assert_eq!(labelled.len(), 10, "1, 2, 5 per decade from 0.01 to 10: {labelled:?}");
+        assert_eq!(light.len(), 1 + 3 * 6, "0.009 and the other mantissas: {light:?}");
         std::fs::remove_file(path).ok();
     }
 
