@@ -905,6 +905,26 @@ fn steady_shares_with_no_particle_give_a_bound() {
     assert!(!svg.contains("(depo, +- 1 s.e.)"), "no measured point where beta has no deposit");
 }
 
+/// Small figures keep their digits: 50 um particles in a ventilated room leave an indoor/outdoor
+/// ratio near 0.01 and a time in the air near 2e-3 h, which three decimals printed as
+/// `0.006 +- 0.001` and `0.002 +- 0.000`.
+#[test]
+fn small_figures_keep_their_digits() {
+    let scene = scratch("small-figures").join("coarse.toml");
+    std::fs::write(
+        &scene,
+        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [50e-6]\ncount = 200\ntarget_error = 0.0\n\
+         [ventilation]\nair_changes_per_hour = 10.0\n[run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
+    )
+    .unwrap();
+    let text = ok_text(&["room", scene.to_str().unwrap(), "--no-plot"]);
+    let rows: Vec<&str> = text.lines().filter(|l| l.trim_start().starts_with("50.000")).collect();
+    assert_eq!(rows.len(), 3, "the first, decay and steady tables' rows: {text}");
+    for row in rows {
+        assert!(!row.contains("+- 0.000") && !row.contains("+- 0.001 "), "{row}");
+    }
+}
+
 /// A size with no deposit event in the window: the first table gives `beta` as its 95 % upper
 /// bound with `[0]` and the ratio to Lai & Nazaroff's as a bound, never `0.00e0 +- 0.0e0` and
 /// a ratio of 0.00.

@@ -10,7 +10,7 @@ use depo_tracker::distribution::first_seen;
 use depo_tracker::studies::{RoomStudy, MAP_BINS};
 
 use super::distribution::{BinRow, DistributionReport, MassUnit, Split};
-use super::{density_label, rate_cell, Measured, RoomResult, Row};
+use super::{density_label, figure_cell, Measured, RoomResult, Row};
 use crate::plot::{self, Series};
 use crate::report::log_grid;
 use crate::text::shown;
@@ -238,7 +238,7 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
             series.push(Series::line("fit", line).dashed().color(1));
             let beta = match f.beta_per_hour.upper_bound {
                 Some(bound) => format!("< {bound:.2e}"),
-                None => rate_cell(&f.beta_per_hour),
+                None => figure_cell(&f.beta_per_hour),
             };
             notes.push(format!("fitted beta {beta} /h"));
         }
@@ -246,7 +246,7 @@ fn plot_room(dir: &Path, study: &RoomStudy, rows: &[Row], note: &mut dyn FnMut(S
             notes.push(format!(
                 "gone before the window; fitted from t = 0 to {} s: beta {} /h",
                 significant(f.window_s[1], 2),
-                rate_cell(&f.beta_per_hour)
+                figure_cell(&f.beta_per_hour)
             ));
         }
         if a > 0.0 {

@@ -103,8 +103,10 @@ pub fn run(scene: RoomScene, progress: &mut dyn Progress) -> Result<RoomResult, 
     Ok(RoomResult { study, rows, distribution, seconds })
 }
 
-/// A rate per hour with its standard error: fixed-point from 0.1/h, else in e-notation.
-fn rate_cell(m: &Measured) -> String {
+/// A figure (a rate per hour, a ratio, a time) with its standard error: fixed-point from 0.1,
+/// else in e-notation, so that a small one keeps its digits (`4.12e-3 +- 1.4e-4`, never
+/// `0.004 +- 0.000`).
+fn figure_cell(m: &Measured) -> String {
     if m.value.abs() >= 0.1 {
         format!("{:.3} +- {:.3}", m.value, m.error)
     } else {

@@ -11,7 +11,7 @@ use super::distribution::{DistributionReport, MassUnit, Part};
 use super::figures::significant;
 use super::resolution::{particles_to_resolve, two_figures_up, RESOLVED_ERROR};
 use super::rows::{source_label, Share};
-use super::{rate_cell, Measured, RoomResult, Row};
+use super::{figure_cell, Measured, RoomResult, Row};
 use crate::report::outln;
 use crate::text::shown;
 use depo_tracker::steady::NOT_WELL_MIXED;
@@ -311,7 +311,7 @@ fn release_cell(s: &Share, released: usize) -> String {
 fn fitted_cell(m: &Measured) -> String {
     match m.upper_bound {
         Some(bound) => format!("< {bound:.2e} [0]"),
-        None => format!("{} [{}]{}", rate_cell(m), m.events, if m.events < FEW_DEPOSITS { "?" } else { "" }),
+        None => format!("{} [{}]{}", figure_cell(m), m.events, if m.events < FEW_DEPOSITS { "?" } else { "" }),
     }
 }
 
@@ -448,7 +448,7 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
             o,
             "{:>8.3}  {:>18}  {:>27} {:>27} {:>27}  {:>11} {:>11} {:>11} {:>11} {:>11} {:>8} {:>13}{}",
             r.diameter_um,
-            format!("{:.3} +- {:.3}", st.residence_h.value, st.residence_h.error),
+            figure_cell(&st.residence_h),
             st.floor_velocity.cell(),
             st.ceiling_velocity.cell(),
             st.walls_velocity.cell(),
@@ -457,11 +457,10 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
             pct(st.walls),
             possible(furnished, st.furnishings),
             possible(exhaust, st.exhausted),
-            pct(st.beyond_run),
+            // Not a fate: exactly 0 where every particle had ended within the run.
+            if st.beyond_run == 0.0 { "0".to_string() } else { pct(st.beyond_run) },
             format!("{:.2} +- {:.2}", st.near_floor_over_mean.value, st.near_floor_over_mean.error),
-            st.indoor_outdoor
-                .as_ref()
-                .map_or(String::new(), |m| format!("  {:>18}", format!("{:.3} +- {:.3}", m.value, m.error)))
+            st.indoor_outdoor.as_ref().map_or(String::new(), |m| format!("  {:>18}", figure_cell(m)))
         );
     }
     // One legend line; room --help and docs/commands.md say more.
@@ -610,7 +609,7 @@ impl DistributionReport {
 /// `1.000 +- 0.000` that reads as measured.
 fn indoor_outdoor_cell(r: &Row, m: &Measured, study: &RoomStudy) -> String {
     match r.indoor_outdoor_range(study) {
-        None => format!("{:.3} +- {:.3}", m.value, m.error),
+        None => figure_cell(m),
         Some((low, high)) => format!("{low:.3}-{high:.3} [0]"),
     }
 }
