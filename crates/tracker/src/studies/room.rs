@@ -448,24 +448,26 @@ impl RoomStudy {
                 }
             });
             // The late rates (1/s) at which an airborne particle ends in each steady fate.
+            // With its standard error: (rate, error).
             let late = |surfaces: &[usize]| {
                 let area: f64 = surfaces.iter().map(|&w| result.walls[w].area).sum();
-                let v = result.deposition_velocity(surfaces).value;
-                if area > 0.0 && v.is_finite() {
-                    v * area / result.volume
+                let v = result.deposition_velocity(surfaces);
+                if area > 0.0 && v.value.is_finite() {
+                    (v.value * area / result.volume, v.error * area / result.volume)
                 } else {
-                    0.0
+                    (0.0, 0.0)
                 }
             };
             let furnished: Vec<usize> = result.walls.iter().filter(|w| w.furnishing.is_some()).map(|w| w.id).collect();
-            let lambda = [
+            let rates = [
                 late(&result.walls_facing(Orientation::Floor)),
                 late(&result.walls_facing(Orientation::Ceiling)),
                 late(&result.walls_facing(Orientation::Wall)),
                 late(&furnished),
-                plain.exchange_rate(),
+                (plain.exchange_rate(), 0.0),
             ];
-            let spread = SteadyState::from_release(&result, lambda, floor_volume);
+            let (lambda, lambda_error) = (rates.map(|r| r.0), rates.map(|r| r.1));
+            let spread = SteadyState::from_release(&result, lambda, lambda_error, floor_volume);
             // A source elsewhere than over the whole room: its own release, tracked plainly.
             let at_source = match self.source {
                 Some(source) => source.injection(
@@ -480,7 +482,7 @@ impl RoomStudy {
                     let mut from_source = plain_settings.clone();
                     from_source.average_from = 0.0;
                     let run = run(&plain, &from_source, &placed).map_err(for_diameters)?;
-                    SteadyState::from_release(&run, lambda, floor_volume)
+                    SteadyState::from_release(&run, lambda, lambda_error, floor_volume)
                 }
                 None => spread,
             };

@@ -20,7 +20,11 @@
 //! `1 / (beta + a)` longer on average and ends on a surface `s` with probability
 //! `lambda_s / (beta + a)`, `lambda_s = v_d,s A_s / V`; that part is reported
 //! ([`SteadyState::beyond_run`]), the rest is the particles' own history. The standard errors
-//! are the delta method's over the independent particles.
+//! are the delta method's over the independent particles, and the late rates' own errors
+//! carried through (each rate moved by its standard error, the change it makes added in
+//! quadrature, the rates taken as independent of the particles' spread): where most of the
+//! steady state lies beyond the run, a figure is only as good as the rates it rests on, and
+//! a rate resting on a single deposit makes it uncertain by about as much.
 //!
 //! ## Where the source enters
 //! The release the steady state is read from is placed where the source emits
@@ -102,11 +106,47 @@ fn fate_of(run: &Run, s: usize) -> usize {
 impl SteadyState {
     /// From `run`, a release followed from `t = 0` for `duration` (s), with its late rates:
     /// `lambda` the rate (1/s) at which an airborne particle ends in each of the five fates
-    /// (deposition per orientation and on furnishings, exhaust); `floor_volume` the air's
-    /// volume in the lowest [`NEAR_FLOOR_SHARE`] of the height (m^3). `None` where nothing
-    /// removes particles (every rate zero): the steady state is never reached.
+    /// (deposition per orientation and on furnishings, exhaust), `lambda_error` their
+    /// standard errors (0 for a rate known exactly, as the air exchange); `floor_volume` the
+    /// air's volume in the lowest [`NEAR_FLOOR_SHARE`] of the height (m^3). `None` where
+    /// nothing removes particles (every rate zero): the steady state is never reached.
     #[must_use]
-    pub fn from_release(run: &Run, lambda: [f64; 5], floor_volume: f64) -> Option<Self> {
+    pub fn from_release(run: &Run, lambda: [f64; 5], lambda_error: [f64; 5], floor_volume: f64) -> Option<Self> {
+        let mut steady = Self::with_rates(run, lambda, floor_volume)?;
+        // Each rate moved by its error (down no further than 0), the change per unit error
+        // squared and summed over the rates.
+        let mut residence = 0.0;
+        let mut velocity = [0.0; 3];
+        for (j, &e) in lambda_error.iter().enumerate() {
+            if !(e > 0.0 && e.is_finite()) {
+                continue;
+            }
+            let (mut up, mut down) = (lambda, lambda);
+            up[j] += e;
+            down[j] = (down[j] - e).max(0.0);
+            let (Some(a), Some(b)) =
+                (Self::with_rates(run, up, floor_volume), Self::with_rates(run, down, floor_volume))
+            else {
+                continue;
+            };
+            let per_error = e / (up[j] - down[j]);
+            residence += ((a.residence.value - b.residence.value) * per_error).powi(2);
+            for (k, v) in velocity.iter_mut().enumerate() {
+                *v += ((a.deposition_velocity[k].value - b.deposition_velocity[k].value) * per_error).powi(2);
+            }
+        }
+        steady.residence.error = steady.residence.error.hypot(residence.sqrt());
+        for (d, v) in steady.deposition_velocity.iter_mut().zip(velocity) {
+            d.error = d.error.hypot(v.sqrt());
+            if d.events > 0 {
+                d.upper_bound = d.value + 2.0 * d.error;
+            }
+        }
+        Some(steady)
+    }
+
+    /// [`SteadyState::from_release`] with the particles' errors alone, at the rates `lambda`.
+    fn with_rates(run: &Run, lambda: [f64; 5], floor_volume: f64) -> Option<Self> {
         let total: f64 = lambda.iter().sum();
         if !(total > 0.0 && total.is_finite()) || run.records.is_empty() {
             return None;
