@@ -448,14 +448,14 @@ impl RoomStudy {
                 }
             });
             // The late rates (1/s) at which an airborne particle ends in each steady fate.
-            // With its standard error: (rate, error).
+            // With its standard error and deposit events: (rate, error, events).
             let late = |surfaces: &[usize]| {
                 let area: f64 = surfaces.iter().map(|&w| result.walls[w].area).sum();
                 let v = result.deposition_velocity(surfaces);
                 if area > 0.0 && v.value.is_finite() {
-                    (v.value * area / result.volume, v.error * area / result.volume)
+                    (v.value * area / result.volume, v.error * area / result.volume, v.events)
                 } else {
-                    (0.0, 0.0)
+                    (0.0, 0.0, 0)
                 }
             };
             let furnished: Vec<usize> = result.walls.iter().filter(|w| w.furnishing.is_some()).map(|w| w.id).collect();
@@ -464,10 +464,10 @@ impl RoomStudy {
                 late(&result.walls_facing(Orientation::Ceiling)),
                 late(&result.walls_facing(Orientation::Wall)),
                 late(&furnished),
-                (plain.exchange_rate(), 0.0),
+                (plain.exchange_rate(), 0.0, 0),
             ];
-            let (lambda, lambda_error) = (rates.map(|r| r.0), rates.map(|r| r.1));
-            let spread = SteadyState::from_release(&result, lambda, lambda_error, floor_volume);
+            let (lambda, lambda_error, lambda_events) = (rates.map(|r| r.0), rates.map(|r| r.1), rates.map(|r| r.2));
+            let spread = SteadyState::from_release(&result, lambda, lambda_error, lambda_events, floor_volume);
             // A source elsewhere than over the whole room: its own release, tracked plainly.
             let at_source = match self.source {
                 Some(source) => source.injection(
@@ -482,7 +482,7 @@ impl RoomStudy {
                     let mut from_source = plain_settings.clone();
                     from_source.average_from = 0.0;
                     let run = run(&plain, &from_source, &placed).map_err(for_diameters)?;
-                    SteadyState::from_release(&run, lambda, lambda_error, floor_volume)
+                    SteadyState::from_release(&run, lambda, lambda_error, lambda_events, floor_volume)
                 }
                 None => spread,
             };

@@ -107,12 +107,29 @@ impl SteadyState {
     /// From `run`, a release followed from `t = 0` for `duration` (s), with its late rates:
     /// `lambda` the rate (1/s) at which an airborne particle ends in each of the five fates
     /// (deposition per orientation and on furnishings, exhaust), `lambda_error` their
-    /// standard errors (0 for a rate known exactly, as the air exchange); `floor_volume` the
-    /// air's volume in the lowest [`NEAR_FLOOR_SHARE`] of the height (m^3). `None` where
-    /// nothing removes particles (every rate zero): the steady state is never reached.
+    /// standard errors (0 for a rate known exactly, as the air exchange) and `lambda_events`
+    /// the deposit events each rests on; `floor_volume` the air's volume in the lowest
+    /// [`NEAR_FLOOR_SHARE`] of the height (m^3). `None` where nothing removes particles
+    /// (every rate zero): the steady state is never reached.
+    ///
+    /// A deposition velocity's `events` are the deposit events it rests on: the release's
+    /// own deposits there, and where particles were still airborne at the end, the events of
+    /// the late rate that gives their future there.
     #[must_use]
-    pub fn from_release(run: &Run, lambda: [f64; 5], lambda_error: [f64; 5], floor_volume: f64) -> Option<Self> {
+    pub fn from_release(
+        run: &Run,
+        lambda: [f64; 5],
+        lambda_error: [f64; 5],
+        lambda_events: [usize; 5],
+        floor_volume: f64,
+    ) -> Option<Self> {
         let mut steady = Self::with_rates(run, lambda, floor_volume)?;
+        let airborne = run.records.iter().any(|r| r.fate == Fate::Airborne);
+        for (k, d) in steady.deposition_velocity.iter_mut().enumerate() {
+            let own =
+                run.records.iter().filter(|r| matches!(r.fate, Fate::Deposited(s) if fate_of(run, s) == k)).count();
+            d.events = own + if airborne && lambda[k] > 0.0 { lambda_events[k] } else { 0 };
+        }
         // Each rate moved by its error (down no further than 0), the change per unit error
         // squared and summed over the rates.
         let mut residence = 0.0;
@@ -195,7 +212,7 @@ impl SteadyState {
         let deposition_velocity = std::array::from_fn(|k| {
             let area: f64 = run.walls_facing(orientations[k]).iter().map(|&w| run.walls[w].area).sum();
             // The particles it rests on: those deposited there, and those whose future there
-            // the late rates give.
+            // the late rates give ([`SteadyState::from_release`] counts deposit events instead).
             let events = samples.iter().filter(|s| s.1[k] > 0.0).count();
             // The ratio sum D / sum T, by the delta method over the particles.
             let r = fates[k] / mean_t;
