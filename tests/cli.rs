@@ -783,12 +783,11 @@ fn room_reports_the_decay_curve_and_where_the_release_ends() {
     assert!(table.contains("beta fitted (1/h)") && table.contains("exhausted"), "{table}");
 }
 
-/// Ventilation alone (mirror walls): the fitted beta rests on no deposit, so the decay table
-/// gives its 95 % upper bound and no `z` (null in the JSON), as there is nothing to compare.
-#[test]
-fn room_decay_gives_no_z_without_deposits() {
-    let dir = scratch("room-decay-mirrors");
-    let scene = dir.join("mirrors.toml");
+/// A ventilated 1 m room whose walls all reflect, at 10 air changes an hour: its 1 um
+/// particles (200, 120 s) leave by the exhaust only, so no surface gets a deposit. The scene
+/// file, in a scratch folder of its own named `name`.
+fn mirrored_room(name: &str) -> std::path::PathBuf {
+    let scene = scratch(name).join("mirrors.toml");
     std::fs::write(
         &scene,
         "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6]\ncount = 200\ntarget_error = 0.0\n\
@@ -796,6 +795,14 @@ fn room_decay_gives_no_z_without_deposits() {
          [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
     )
     .unwrap();
+    scene
+}
+
+/// Ventilation alone (mirror walls): the fitted beta rests on no deposit, so the decay table
+/// gives its 95 % upper bound and no `z` (null in the JSON), as there is nothing to compare.
+#[test]
+fn room_decay_gives_no_z_without_deposits() {
+    let scene = mirrored_room("room-decay-mirrors");
     let report = ok_json(&["room", scene.to_str().unwrap(), "--format", "json", "--no-plot"]);
     let fit = &report["sizes"][0]["decay_fit"];
     assert_eq!(fit["beta_per_hour"]["events"], 0, "{fit}");
@@ -815,15 +822,8 @@ fn room_decay_gives_no_z_without_deposits() {
 /// leaves. The table: a one-line heading, the header, a row per size, one legend line.
 #[test]
 fn release_shares_with_no_particle_give_a_bound() {
-    let dir = scratch("release-bounds");
-    let mirrors = dir.join("mirrors.toml");
-    std::fs::write(
-        &mirrors,
-        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6]\ncount = 200\ntarget_error = 0.0\n\
-         [ventilation]\nair_changes_per_hour = 10.0\n[walls.all]\nbehaviour = \"reflect\"\n\
-         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
-    )
-    .unwrap();
+    let mirrors = mirrored_room("release-bounds");
+    let dir = mirrors.parent().unwrap().to_path_buf();
     let closed = dir.join("closed.toml");
     std::fs::write(
         &closed,
@@ -870,14 +870,7 @@ fn release_shares_with_no_particle_give_a_bound() {
 /// that reads as a measured none.
 #[test]
 fn steady_shares_with_no_particle_give_a_bound() {
-    let scene = scratch("steady-bounds").join("mirrors.toml");
-    std::fs::write(
-        &scene,
-        "[room]\nsize = [1.0, 1.0, 1.0]\n[particles]\ndiameters = [1e-6]\ncount = 200\ntarget_error = 0.0\n\
-         [ventilation]\nair_changes_per_hour = 10.0\n[walls.all]\nbehaviour = \"reflect\"\n\
-         [run]\ndt = 0.05\nduration = 120.0\nexcursions = false\n",
-    )
-    .unwrap();
+    let scene = mirrored_room("steady-bounds");
     let text = ok_text(&["room", scene.to_str().unwrap(), "--no-plot"]);
     let part = text.split("Steady state under a continuous source").nth(1).unwrap_or_else(|| panic!("{text}"));
     let row = part.lines().find(|l| l.trim_start().starts_with("1.000")).unwrap_or_else(|| panic!("{part}"));
