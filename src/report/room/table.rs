@@ -291,13 +291,14 @@ fn heading_number(x: f64) -> String {
 /// its delta-method error is itself uncertain.
 const FEW_DEPOSITS: usize = 10;
 
-/// A share of the release in % in the decay table: `95.5` (a share below 0.1 % to one
-/// significant figure, never a `0.0` that reads as none); where no tracked particle ended
-/// there, `< b [0]`: the 95 % upper bound on a binomial share with no event in `released`
-/// trials by the rule of three, 300 / n % (as the furnishings' table bounds its shares).
-fn release_cell(s: &Share, released: usize) -> String {
-    let percent = 100.0 * s.share;
-    if s.count == 0 {
+/// A share in % (of a release, or of a steady source): `95.5` (a share below 0.1 % to one
+/// significant figure, never a `0.0` that reads as none); where `none_there` (no tracked
+/// particle ended there), `< b [0]`: the 95 % upper bound on a binomial share with no event
+/// in `released` trials by the rule of three, 300 / n % (as the furnishings' table bounds its
+/// shares).
+fn percent_cell(share: f64, none_there: bool, released: usize) -> String {
+    let percent = 100.0 * share;
+    if none_there {
         format!("< {} [0]", significant(300.0 / released.max(1) as f64, 2))
     } else if percent < 0.1 {
         significant(percent, 1)
@@ -365,7 +366,7 @@ fn decay_table(o: &mut String, rows: &[Row], ach: f64, openings: bool) {
             },
         };
         let release = &r.release;
-        let pct = |s: &Share| release_cell(s, release.particles);
+        let pct = |s: &Share| percent_cell(s.share, s.count == 0, release.particles);
         // Nothing leaves a room with no exchange and no recirculation filter: exactly none.
         let exhaust = ach > 0.0 || r.filter_removal_per_hour.is_some_and(|f| f > 0.0);
         outln!(
@@ -439,7 +440,9 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
             outln!(o, "{:>8.3}  nothing removes these particles: no steady state", r.diameter_um);
             continue;
         };
-        let pct = |x: f64| steady_share_cell(x, r.release.particles);
+        // A share of exactly 0: none of the particles the steady state is drawn from ended
+        // there, and no late rate leads there.
+        let pct = |x: f64| percent_cell(x, x == 0.0, r.release.particles);
         // A fate the scene has no means to reach is none by construction, not a bound.
         let furnished = !study.scene.furnishings.is_empty();
         let exhaust = study.scene.exchange_rate() > 0.0 || r.filter_removal_per_hour.is_some_and(|f| f > 0.0);
@@ -470,22 +473,6 @@ fn steady_table(o: &mut String, rows: &[Row], study: &RoomStudy) {
          there; beyond %: of the time in air \
          from past the run; near floor: lowest tenth of the height over the mean; room --help says more."
     );
-}
-
-/// A share of the steady source in %: `95.5` (below 0.1 % to one significant figure); a
-/// share of exactly 0 means that none of the `released` particles the steady state is drawn
-/// from ended there and no late rate leads there, and gets the rule of three's 95 % upper
-/// bound, `< 300 / n [0]` (as the release table bounds its shares), never a `0.0` that
-/// reads as a measured none.
-fn steady_share_cell(share: f64, released: usize) -> String {
-    let percent = 100.0 * share;
-    if share == 0.0 {
-        format!("< {} [0]", significant(300.0 / released.max(1) as f64, 2))
-    } else if percent < 0.1 {
-        significant(percent, 1)
-    } else {
-        format!("{percent:.1}")
-    }
 }
 
 /// The near-floor concentration over the mean under a source spread over the room, `1.02`,
